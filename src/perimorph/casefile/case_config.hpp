@@ -1,0 +1,136 @@
+#pragma once
+// The typed form of a case file. Parsed once, at the boundary, by
+// parse_case_file (parse_case.hpp); nothing else reads TOML. Every field has
+// passed validation when a CaseConfig exists: later stages may rely on it.
+// The format is documented in docs/case-file.md.
+
+#include "perimorph/core/types.hpp"
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace perimorph::casefile {
+
+/// Where a value came from, for messages raised after parsing (e.g. a set name
+/// that the mesh does not have).
+struct SourceLocation {
+  std::string file;
+  int line = 0;
+  int column = 0;
+  std::string key;  ///< dotted path, e.g. "dirichlet[2].set"
+  std::string describe() const;  ///< "case.toml:12:5: key 'dirichlet[2].set'"
+};
+
+/// [mesh] type = "box"
+struct BoxMesh {
+  int dim = 3;
+  Vec3 lower = Vec3::Zero();
+  Vec3 upper = Vec3::Ones();
+  std::array<Index, 3> cells{1, 1, 1};
+};
+
+/// [[mesh.cut]]: 1D at = x; 2D from/to (a segment); 3D origin, edge1, edge2
+/// (a parallelogram).
+struct CutSpec {
+  Vec3 origin = Vec3::Zero();
+  Vec3 edge1 = Vec3::Zero();
+  Vec3 edge2 = Vec3::Zero();
+  SourceLocation where;
+};
+
+struct MeshSpec {
+  BoxMesh box;
+  std::vector<CutSpec> cuts;
+};
+
+/// [[region]]: the cells whose centroid lies in a box (lower, upper).
+struct RegionSpec {
+  std::string name;
+  int id = 0;  ///< 1, 2, ... in order of appearance; 0 is the rest of the mesh
+  Vec3 lower = Vec3::Zero();
+  Vec3 upper = Vec3::Zero();
+  SourceLocation where;
+};
+
+enum class PlaneMode { strain, stress };
+
+/// [model]
+struct ModelSpec {
+  PlaneMode plane = PlaneMode::strain;  ///< 2D only
+  double thickness = 1.0;               ///< 2D: out-of-plane thickness; 1D: cross-section area
+  int local_quadrature = 2;             ///< Gauss points per direction for the local stiffness
+};
+
+enum class MaterialKind { isotropic, orthotropic };
+
+/// [[material]]: assigned to a region ("all" = every cell not claimed by a
+/// later material). Orthotropic: engineering constants in material axes; the
+/// axes are the columns of `axes` (from `rotation`, see docs).
+struct MaterialSpec {
+  std::string name;
+  std::string region = "all";
+  MaterialKind kind = MaterialKind::isotropic;
+  double E = 0.0, nu = 0.0;
+  double E1 = 0.0, E2 = 0.0, E3 = 0.0, nu12 = 0.0, nu13 = 0.0, nu23 = 0.0, G12 = 0.0, G13 = 0.0, G23 = 0.0;
+  Mat3 axes = Mat3::Identity();
+  SourceLocation where;
+};
+
+/// [[dirichlet]]: on a node set (or the nodes of a face/cell set), prescribes
+/// u_c = value_c + Σ_j gradient_cj x_j for each constrained component c,
+/// scaled by the load factor.
+struct DirichletSpec {
+  std::string set;
+  std::array<bool, 3> constrained{false, false, false};
+  Vec3 value = Vec3::Zero();
+  Mat3 gradient = Mat3::Zero();
+  SourceLocation where;
+};
+
+/// [[traction]]: a constant traction vector (force per area) on a face set.
+struct TractionSpec {
+  std::string set;
+  Vec3 value = Vec3::Zero();
+  SourceLocation where;
+};
+
+/// [loading]: load factors of the increments. Either `increments` = N with a
+/// linear ramp (factors i/N, i = 1..N), or an explicit list `factors`.
+struct LoadingSpec {
+  std::vector<double> factors{1.0};
+  Vec3 body_force = Vec3::Zero();  ///< force per volume, scaled by the load factor
+};
+
+/// [solver]
+struct SolverSpec {
+  std::string petsc_options;  ///< e.g. "-ksp_type preonly -pc_type cholesky"
+  double rtol = 1e-10;
+  int max_iterations = 10000;
+};
+
+/// [output]
+struct OutputSpec {
+  std::string directory = "output";  ///< relative to the case file's folder unless absolute
+  std::string basename;              ///< default: case file stem
+  bool vtu = true;
+  int every = 1;  ///< write VTU every n increments (and always the last)
+};
+
+struct CaseConfig {
+  std::string path;   ///< the case file as given
+  std::string title;  ///< optional [case] title
+  MeshSpec mesh;
+  std::vector<RegionSpec> regions;
+  ModelSpec model;
+  std::vector<MaterialSpec> materials;
+  std::vector<DirichletSpec> dirichlet;
+  std::vector<TractionSpec> tractions;
+  LoadingSpec loading;
+  SolverSpec solver;
+  OutputSpec output;
+  int dim() const { return mesh.box.dim; }
+};
+
+}  // namespace perimorph::casefile

@@ -1,0 +1,40 @@
+#pragma once
+// Two kinds of errors (STYLE.md habit 8):
+//  - broken internal invariants: PERIMORPH_ASSERT (active in every build; the
+//    cost is negligible next to assembly and it keeps release runs honest);
+//  - errors a user can act on: exceptions derived from perimorph::Error, thrown
+//    with a message naming what was wrong and what is allowed; caught once in
+//    main.
+
+#include <stdexcept>
+#include <string>
+
+namespace perimorph {
+
+/// Base class for every error reported to the user.
+class Error : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A case file (or command-line input) that cannot be run as written.
+class InputError : public Error {
+public:
+  using Error::Error;
+};
+
+/// The linear solver failed, or a non-finite value appeared in the solution.
+class SolverError : public Error {
+public:
+  using Error::Error;
+};
+
+[[noreturn]] void assertion_failed(const char* expr, const char* file, int line,
+                                   const std::string& message);
+
+}  // namespace perimorph
+
+#define PERIMORPH_ASSERT(cond, msg)                                                   \
+  do {                                                                                \
+    if (!(cond)) ::perimorph::assertion_failed(#cond, __FILE__, __LINE__, (msg));    \
+  } while (false)

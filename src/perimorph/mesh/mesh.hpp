@@ -1,0 +1,90 @@
+#pragma once
+// One unstructured mesh type for bars, quads and hexes, with named node, face
+// and element sets. Nodes always carry three coordinates (unused ones are 0),
+// so geometry code is the same in every dimension.
+
+#include "perimorph/core/types.hpp"
+#include "perimorph/mesh/cell_type.hpp"
+
+#include <map>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace perimorph::mesh {
+
+/// A face of a cell: (cell, local face number).
+struct CellFace {
+  Index cell = 0;
+  int face = 0;
+  auto operator<=>(const CellFace&) const = default;
+};
+
+/// A planar cut kept as geometry after the nodes were split along it: the
+/// non-local model removes the bonds that cross it (THEORY §4). In 1D it is a
+/// point (origin), in 2D a segment (origin, origin + edge1), in 3D a
+/// parallelogram (origin + s edge1 + t edge2, s, t in [0, 1]).
+struct Cut {
+  int dim = 3;
+  Vec3 origin = Vec3::Zero();
+  Vec3 edge1 = Vec3::Zero();
+  Vec3 edge2 = Vec3::Zero();
+
+  /// Unit normal of the cut's line (2D, in the xy plane) or plane (3D); e_x in 1D.
+  Vec3 normal() const;
+  /// True if the open segment a–b crosses the cut (touching counts as crossing).
+  bool crosses(const Vec3& a, const Vec3& b) const;
+  /// True if p lies on the closed cut within tolerance tol (absolute length).
+  bool contains(const Vec3& p, double tol) const;
+};
+
+class Mesh {
+public:
+  Mesh(int dim, std::vector<Vec3> nodes, std::vector<Index> cells);
+
+  int dim() const { return dim_; }
+  CellType cell_type() const { return cell_type_of_dim(dim_); }
+  int nodes_per_cell() const { return mesh::nodes_per_cell(cell_type()); }
+  Index num_nodes() const { return static_cast<Index>(nodes_.size()); }
+  Index num_cells() const { return static_cast<Index>(cells_.size() / static_cast<std::size_t>(nodes_per_cell())); }
+
+  const Vec3& node(Index n) const { return nodes_[static_cast<std::size_t>(n)]; }
+  const std::vector<Vec3>& nodes() const { return nodes_; }
+  std::span<const Index> cell(Index c) const {
+    return {cells_.data() + static_cast<std::size_t>(c) * static_cast<std::size_t>(nodes_per_cell()),
+            static_cast<std::size_t>(nodes_per_cell())};
+  }
+  const std::vector<Index>& connectivity() const { return cells_; }
+  Vec3 cell_centroid(Index c) const;
+  /// Largest edge length of cell c.
+  double cell_size(Index c) const;
+  /// Axis-aligned bounding box of all nodes.
+  std::pair<Vec3, Vec3> bounding_box() const;
+
+  std::map<std::string, std::vector<Index>> node_sets;
+  std::map<std::string, std::vector<CellFace>> face_sets;
+  std::map<std::string, std::vector<Index>> cell_sets;
+  /// Region id per cell (0 by default), written to the output.
+  std::vector<int> cell_region;
+  /// Cuts along which nodes were split (see split_along_cut).
+  std::vector<Cut> cuts;
+
+  /// Node set by name, or the nodes of a face set of that name; throws
+  /// InputError naming the known sets if neither exists.
+  std::vector<Index> nodes_of_set(const std::string& name) const;
+  /// Names of every node, face and cell set (for error messages).
+  std::vector<std::string> set_names() const;
+
+  // Mutation used by the pre-crack splitter.
+  Index add_node(const Vec3& x);
+  void set_cell_node(Index c, int local, Index node) {
+    cells_[static_cast<std::size_t>(c) * static_cast<std::size_t>(nodes_per_cell()) + static_cast<std::size_t>(local)] = node;
+  }
+
+private:
+  int dim_;
+  std::vector<Vec3> nodes_;
+  std::vector<Index> cells_;
+};
+
+}  // namespace perimorph::mesh
