@@ -2,6 +2,7 @@
 
 #include "perimorph/core/error.hpp"
 
+#include <Eigen/Dense>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 

@@ -1,0 +1,60 @@
+#pragma once
+// The degree-of-freedom map as plain data (STYLE.md habit 5, DOLFINx-like):
+// per cell a span of dof nodes, each carrying block_size components, with a
+// per-cell continuity flag. Continuous (CG) cells share the mesh's vertex
+// nodes; discontinuous (DG) cells own private copies of their vertices, so the
+// displacement may jump across their faces (THEORY §4). Dof numbering is
+// interleaved: dof = node * block_size + component.
+//
+// Parallel readiness: owned dof nodes are [0, num_owned); ghosts follow (none
+// in a serial run). Global numbers are the local ones offset by owned_offset.
+
+#include "perimorph/core/types.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace perimorph::mesh {
+class Mesh;
+}
+
+namespace perimorph::dofs {
+
+enum class Continuity : std::uint8_t { continuous = 0, discontinuous = 1 };
+
+class DofMap {
+public:
+  /// CG on every cell whose flag is continuous, DG on the others. An empty
+  /// span means CG everywhere.
+  DofMap(const mesh::Mesh& mesh, int block_size, std::span<const Continuity> continuity = {});
+
+  int block_size() const { return block_size_; }
+  Index num_nodes() const { return static_cast<Index>(node_coords_.size()); }
+  Index num_dofs() const { return num_nodes() * block_size_; }
+  Index num_owned_nodes() const { return num_nodes(); }
+  Index owned_offset() const { return 0; }
+
+  std::span<const Index> cell_nodes(Index c) const {
+    return {cell_nodes_.data() + offsets_[static_cast<std::size_t>(c)],
+            static_cast<std::size_t>(offsets_[static_cast<std::size_t>(c) + 1] - offsets_[static_cast<std::size_t>(c)])};
+  }
+  Index num_cells() const { return static_cast<Index>(offsets_.size()) - 1; }
+  Continuity continuity(Index c) const { return continuity_[static_cast<std::size_t>(c)]; }
+  const Vec3& node_coordinate(Index n) const { return node_coords_[static_cast<std::size_t>(n)]; }
+  const std::vector<Vec3>& node_coordinates() const { return node_coords_; }
+  /// Mesh node this dof node copies (CG: itself; DG: the vertex it duplicates).
+  Index mesh_node(Index n) const { return mesh_node_[static_cast<std::size_t>(n)]; }
+  /// Dof nodes that copy mesh node m (one for CG, one per DG cell touching it, ...).
+  std::vector<Index> dof_nodes_of_mesh_nodes(std::span<const Index> mesh_nodes) const;
+
+private:
+  int block_size_;
+  std::vector<Index> offsets_;
+  std::vector<Index> cell_nodes_;
+  std::vector<Continuity> continuity_;
+  std::vector<Vec3> node_coords_;
+  std::vector<Index> mesh_node_;
+};
+
+}  // namespace perimorph::dofs

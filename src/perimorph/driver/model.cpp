@@ -1,0 +1,91 @@
+#include "perimorph/driver/model.hpp"
+
+#include "perimorph/core/error.hpp"
+#include "perimorph/mesh/box.hpp"
+#include "perimorph/mesh/cut.hpp"
+
+#include <fmt/format.h>
+
+namespace perimorph::driver {
+
+namespace {
+
+bool inside(const Vec3& x, const Vec3& lo, const Vec3& hi, int dim) {
+  for (int d = 0; d < dim; ++d)
+    if (x[d] < lo[d] || x[d] > hi[d]) return false;
+  return true;
+}
+
+fem::PlaneMode plane_mode(casefile::PlaneMode p) {
+  return p == casefile::PlaneMode::stress ? fem::PlaneMode::stress : fem::PlaneMode::strain;
+}
+
+}  // namespace
+
+mesh::Mesh build_mesh(const casefile::CaseConfig& config) {
+  const auto& box = config.mesh.box;
+  mesh::Mesh m = mesh::make_box({box.dim, box.lower, box.upper, box.cells});
+  for (const auto& r : config.regions) {
+    std::vector<Index> cells;
+    for (Index c = 0; c < m.num_cells(); ++c)
+      if (inside(m.cell_centroid(c), r.lower, r.upper, box.dim)) {
+        cells.push_back(c);
+        m.cell_region[static_cast<std::size_t>(c)] = r.id;
+      }
+    if (cells.empty())
+      throw InputError(fmt::format("{}: region '{}' contains no cell centroid; enlarge its box or refine the mesh",
+                                   r.where.describe(), r.name));
+    m.cell_sets[r.name] = std::move(cells);
+  }
+  for (const auto& c : config.mesh.cuts) {
+    try {
+      mesh::split_along_cut(m, mesh::Cut{box.dim, c.origin, c.edge1, c.edge2});
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: {}", c.where.describe(), e.what()));
+    }
+  }
+  return m;
+}
+
+Voigt6 material_stiffness(const casefile::MaterialSpec& m) {
+  std::string problem;
+  Voigt6 C;
+  if (m.kind == casefile::MaterialKind::isotropic) {
+    const fem::IsotropicElasticity iso{m.E, m.nu};
+    problem = fem::admissibility_problem(iso);
+    C = fem::stiffness_voigt(iso);
+  } else {
+    const fem::OrthotropicElasticity ortho{m.E1, m.E2, m.E3, m.nu12, m.nu13, m.nu23, m.G12, m.G13, m.G23, m.axes};
+    problem = fem::admissibility_problem(ortho);
+    C = fem::stiffness_voigt(ortho);
+  }
+  if (!problem.empty()) throw InputError(fmt::format("{}: material '{}': {}", m.where.describe(), m.name, problem));
+  return C;
+}
+
+Model build_model(const casefile::CaseConfig& config) {
+  mesh::Mesh m = build_mesh(config);
+  const int dim = m.dim();
+  dofs::DofMap dofmap(m, dim);
+  auto rule = fem::gauss_legendre(dim, config.model.local_quadrature);
+  fem::ConstitutiveField field(dim, m.num_cells(), static_cast<int>(rule.size()));
+  std::vector<int> assigned(static_cast<std::size_t>(m.num_cells()), -1);
+  for (const auto& mat : config.materials) {
+    const int id = field.add_tensor(fem::reduce_stiffness(material_stiffness(mat), dim, plane_mode(config.model.plane)));
+    const auto& cells = m.cell_sets.at(mat.region);
+    for (Index c : cells) {
+      field.set_cell(c, id);
+      assigned[static_cast<std::size_t>(c)] = id;
+    }
+  }
+  for (Index c = 0; c < m.num_cells(); ++c)
+    if (assigned[static_cast<std::size_t>(c)] < 0)
+      throw InputError(fmt::format("{}: cell {} (centroid {:.4g}, {:.4g}, {:.4g}) has no material; give a material "
+                                   "with region = \"all\" or cover every region",
+                                   config.path, c, m.cell_centroid(c).x(), m.cell_centroid(c).y(),
+                                   m.cell_centroid(c).z()));
+  const double scale = dim == 3 ? 1.0 : config.model.thickness;
+  return Model{config, std::move(m), std::move(dofmap), std::move(rule), std::move(field), scale};
+}
+
+}  // namespace perimorph::driver

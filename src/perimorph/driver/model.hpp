@@ -1,0 +1,38 @@
+#pragma once
+// The discretized problem built from a case file: mesh (with regions and
+// pre-crack cuts), dof map, quadrature and the local stiffness at every
+// quadrature point. This is where typed case data meets the pipeline stages.
+
+#include "perimorph/assembly/local_assembly.hpp"
+#include "perimorph/casefile/case_config.hpp"
+#include "perimorph/dofs/dof_map.hpp"
+#include "perimorph/fem/constitutive_field.hpp"
+#include "perimorph/fem/material.hpp"
+#include "perimorph/mesh/mesh.hpp"
+
+namespace perimorph::driver {
+
+struct Model {
+  casefile::CaseConfig config;
+  mesh::Mesh mesh;
+  dofs::DofMap dofmap;
+  std::vector<fem::QuadraturePoint> rule;
+  fem::ConstitutiveField stiffness;
+  double scale = 1.0;  ///< thickness (2D) or cross-section (1D)
+
+  int dim() const { return mesh.dim(); }
+  assembly::LocalSpace local_space() const { return {mesh, dofmap, rule, scale}; }
+};
+
+/// The mesh of a case: box, regions (cell sets and region ids), cuts.
+mesh::Mesh build_mesh(const casefile::CaseConfig& config);
+
+/// 3D stiffness (Voigt 6×6) of a case material, checked for admissibility.
+Voigt6 material_stiffness(const casefile::MaterialSpec& m);
+
+/// Builds everything; throws InputError naming the case-file key for problems
+/// found only now (a cut off the element faces, an inadmissible material, a
+/// cell left without material).
+Model build_model(const casefile::CaseConfig& config);
+
+}  // namespace perimorph::driver

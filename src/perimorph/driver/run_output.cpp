@@ -1,0 +1,104 @@
+#include "perimorph/driver/run_output.hpp"
+
+#include "perimorph/core/error.hpp"
+#include "perimorph/io/grid.hpp"
+#include "perimorph/io/vtu_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <filesystem>
+
+namespace perimorph::driver {
+
+namespace {
+
+/// Voigt (engineering shear) to a row-major 3×3 tensor; `engineering` halves shears.
+std::array<double, 9> voigt_to_tensor(const double* v, int dim, bool engineering) {
+  const double h = engineering ? 0.5 : 1.0;
+  std::array<double, 9> t{};
+  if (dim == 1) {
+    t[0] = v[0];
+  } else if (dim == 2) {
+    t[0] = v[0];
+    t[4] = v[1];
+    t[1] = t[3] = h * v[2];
+  } else {
+    t[0] = v[0];
+    t[4] = v[1];
+    t[8] = v[2];
+    t[5] = t[7] = h * v[3];
+    t[2] = t[6] = h * v[4];
+    t[1] = t[3] = h * v[5];
+  }
+  return t;
+}
+
+io::VtkCell vtk_cell(int dim) {
+  return dim == 1 ? io::VtkCell::line : dim == 2 ? io::VtkCell::quad : io::VtkCell::hexahedron;
+}
+
+}  // namespace
+
+RunOutput::RunOutput(const Model& model, std::string directory, std::string basename,
+                     std::vector<std::string> reaction_names)
+    : directory_(std::move(directory)), basename_(std::move(basename)), dim_(model.dim()) {
+  std::error_code ec;
+  std::filesystem::create_directories(directory_, ec);
+  if (ec) throw InputError(fmt::format("cannot create output directory '{}': {}", directory_, ec.message()));
+  std::vector<std::string> columns{"increment", "load_factor"};
+  const char* axes = "xyz";
+  for (const auto& name : reaction_names)
+    for (int d = 0; d < dim_; ++d) columns.push_back(fmt::format("reaction_{}_{}", name, axes[d]));
+  for (const char* c : {"strain_energy", "external_work", "solver_iterations", "relative_residual", "wall_time"})
+    columns.emplace_back(c);
+  csv_ = std::make_unique<io::CsvTable>(csv_path(), std::move(columns));
+  if (model.config.output.vtu) pvd_ = std::make_unique<io::PvdCollection>(pvd_path());
+}
+
+std::string RunOutput::csv_path() const { return (std::filesystem::path(directory_) / (basename_ + ".csv")).string(); }
+std::string RunOutput::pvd_path() const { return (std::filesystem::path(directory_) / (basename_ + ".pvd")).string(); }
+
+void RunOutput::write_increment_vtu(const Model& model, int increment, double load_factor, std::span<const double> u) {
+  if (!pvd_) return;
+  const auto& dm = model.dofmap;
+  io::UnstructuredGrid grid;
+  grid.points = dm.node_coordinates();
+  grid.nodes_per_cell = model.mesh.nodes_per_cell();
+  grid.cell_type = vtk_cell(dim_);
+  for (Index c = 0; c < dm.num_cells(); ++c)
+    for (Index n : dm.cell_nodes(c)) grid.connectivity.push_back(n);
+
+  io::Field disp{"displacement", 3, std::vector<double>(static_cast<std::size_t>(dm.num_nodes()) * 3, 0.0)};
+  for (Index n = 0; n < dm.num_nodes(); ++n)
+    for (int d = 0; d < dim_; ++d) disp.values[static_cast<std::size_t>(n * 3 + d)] = u[static_cast<std::size_t>(n * dim_ + d)];
+  grid.point_data.push_back(std::move(disp));
+
+  const auto fields = assembly::cell_strain_stress(model.local_space(), model.stiffness, u);
+  const int nv = fem::voigt_size(dim_);
+  io::Field strain{"strain", 9, {}}, stress{"stress", 9, {}}, region{"region", 1, {}}, energy{"strain_energy_density", 1, {}};
+  for (Index c = 0; c < dm.num_cells(); ++c) {
+    const auto e = voigt_to_tensor(&fields.strain[static_cast<std::size_t>(c * nv)], dim_, true);
+    const auto s = voigt_to_tensor(&fields.stress[static_cast<std::size_t>(c * nv)], dim_, false);
+    strain.values.insert(strain.values.end(), e.begin(), e.end());
+    stress.values.insert(stress.values.end(), s.begin(), s.end());
+    region.values.push_back(model.mesh.cell_region[static_cast<std::size_t>(c)]);
+    energy.values.push_back(fields.energy_density[static_cast<std::size_t>(c)]);
+  }
+  grid.cell_data = {std::move(strain), std::move(stress), std::move(region), std::move(energy)};
+
+  const std::string name = fmt::format("{}_{:04d}.vtu", basename_, increment);
+  io::write_vtu((std::filesystem::path(directory_) / name).string(), grid);
+  pvd_->add(load_factor, name);
+}
+
+void RunOutput::add_row(const IncrementRecord& r) {
+  std::vector<double> row{static_cast<double>(r.increment), r.load_factor};
+  for (const Vec3& f : r.reactions)
+    for (int d = 0; d < dim_; ++d) row.push_back(f[d]);
+  row.insert(row.end(), {r.strain_energy, r.external_work, static_cast<double>(r.iterations), r.relative_residual,
+                         r.wall_time});
+  csv_->add_row(row);
+}
+
+}  // namespace perimorph::driver

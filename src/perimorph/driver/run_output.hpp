@@ -1,0 +1,47 @@
+#pragma once
+// What a run writes: a VTU per output increment collected in a PVD, and one
+// CSV row per increment (THEORY-independent bookkeeping; format in
+// docs/output.md).
+
+#include "perimorph/driver/model.hpp"
+#include "perimorph/io/csv_table.hpp"
+#include "perimorph/io/pvd_writer.hpp"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace perimorph::driver {
+
+struct IncrementRecord {
+  int increment = 0;
+  double load_factor = 0.0;
+  std::vector<Vec3> reactions;  ///< one per reaction set
+  double strain_energy = 0.0;
+  double external_work = 0.0;
+  int iterations = 0;
+  double relative_residual = 0.0;
+  double wall_time = 0.0;  ///< seconds since the start of the run
+};
+
+class RunOutput {
+public:
+  /// Creates `directory` (and parents). Files: BASENAME.csv, BASENAME.pvd,
+  /// BASENAME_NNNN.vtu.
+  RunOutput(const Model& model, std::string directory, std::string basename, std::vector<std::string> reaction_names);
+
+  void write_increment_vtu(const Model& model, int increment, double load_factor, std::span<const double> u);
+  void add_row(const IncrementRecord& r);
+
+  const std::string& directory() const { return directory_; }
+  std::string csv_path() const;
+  std::string pvd_path() const;
+
+private:
+  std::string directory_, basename_;
+  int dim_;
+  std::unique_ptr<io::CsvTable> csv_;
+  std::unique_ptr<io::PvdCollection> pvd_;
+};
+
+}  // namespace perimorph::driver

@@ -1,0 +1,141 @@
+#include "perimorph/driver/static_run.hpp"
+
+#include "perimorph/assembly/sparsity.hpp"
+#include "perimorph/core/error.hpp"
+#include "perimorph/driver/boundary_conditions.hpp"
+#include "perimorph/driver/run_output.hpp"
+#include "perimorph/io/progress.hpp"
+#include "perimorph/la/matrix.hpp"
+#include "perimorph/la/petsc_session.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <filesystem>
+
+namespace perimorph::driver {
+
+std::string resolve_output_directory(const casefile::CaseConfig& config, const RunOptions& options) {
+  if (!options.output_directory.empty()) return options.output_directory;
+  const std::filesystem::path dir(config.output.directory);
+  if (dir.is_absolute()) return dir.string();
+  return (std::filesystem::path(config.path).parent_path() / dir).lexically_normal().string();
+}
+
+namespace {
+
+std::string basename_of(const casefile::CaseConfig& config) {
+  if (!config.output.basename.empty()) return config.output.basename;
+  return std::filesystem::path(config.path).stem().string();
+}
+
+std::vector<Vec3> sum_reactions(const std::vector<ReactionSet>& sets, std::span<const double> r, int dim) {
+  std::vector<Vec3> out;
+  for (const auto& s : sets) {
+    Vec3 f = Vec3::Zero();
+    for (Index n : s.dof_nodes)
+      for (int d = 0; d < dim; ++d) f[d] += r[static_cast<std::size_t>(n * dim + d)];
+    out.push_back(f);
+  }
+  return out;
+}
+
+}  // namespace
+
+RunSummary run_static(const Model& model, const RunOptions& options) {
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  const auto& config = model.config;
+  const int dim = model.dim();
+  la::add_options(config.solver.petsc_options);
+
+  // K (kept unconstrained for reactions and energies) and the constrained copy A.
+  la::Matrix K(assembly::build_sparsity(model.dofmap));
+  assembly::assemble_elasticity(model.local_space(), model.stiffness, K);
+  K.finalize();
+  const DirichletData bc = build_dirichlet(model);
+  const std::vector<double> F = build_external_force(model);
+  const Index n = model.dofmap.num_dofs();
+
+  // Unit-load right-hand side with the constraints eliminated: linear in the
+  // load factor, so it is scaled per increment.
+  la::Vector g(n, dim), rhs_unit(n, dim), f_unit(n, dim);
+  {
+    std::vector<double> gv(static_cast<std::size_t>(n), 0.0);
+    for (std::size_t k = 0; k < bc.dofs.size(); ++k) gv[static_cast<std::size_t>(bc.dofs[k])] = bc.values[k];
+    g.assign(gv);
+  }
+  f_unit.assign(F);
+  rhs_unit.copy_from(f_unit);
+  la::Matrix A = K.duplicate();
+  A.eliminate_dirichlet(bc.dofs, g, rhs_unit);
+  A.set_spd();
+  la::LinearSolver solver(config.solver.rtol, config.solver.max_iterations);
+  solver.set_operator(A, model.dofmap.node_coordinates(), dim);
+
+  const auto sets = reaction_sets(model);
+  RunSummary summary;
+  for (const auto& s : sets) summary.reaction_names.push_back(s.name);
+  summary.output_directory = resolve_output_directory(config, options);
+  RunOutput output(model, summary.output_directory, basename_of(config), summary.reaction_names);
+  summary.csv_path = output.csv_path();
+  summary.pvd_path = config.output.vtu ? output.pvd_path() : "";
+
+  const auto& factors = config.loading.factors;
+  const int total = static_cast<int>(factors.size());
+  io::ProgressLine progress(total, !options.quiet);
+  la::Vector u(n, dim), rhs(n, dim), internal(n, dim);
+  std::vector<double> u_prev(static_cast<std::size_t>(n), 0.0), fint_prev(static_cast<std::size_t>(n), 0.0);
+  double work = 0.0;
+
+  for (int i = 0; i < total; ++i) {
+    const double lambda = factors[static_cast<std::size_t>(i)];
+    rhs.set_all(0.0);
+    rhs.axpy(lambda, rhs_unit);
+    try {
+      summary.last_solve = solver.solve(rhs, u);
+    } catch (const SolverError& e) {
+      progress.finish();
+      throw SolverError(fmt::format("increment {}/{} (load factor {}): {}\nResults of increments 1..{} are in {}", i + 1,
+                                    total, lambda, e.what(), i, summary.output_directory));
+    }
+    // Internal force K u: reactions on constrained dofs, energies.
+    K.mult(u, internal);
+    const std::vector<double> uv = u.to_std();
+    const std::vector<double> fint = internal.to_std();
+    std::vector<double> reaction(fint);
+    for (std::size_t k = 0; k < reaction.size(); ++k) reaction[k] -= lambda * F[k];
+    double energy = 0.0;
+    for (std::size_t k = 0; k < uv.size(); ++k) {
+      energy += 0.5 * uv[k] * fint[k];
+      // Work of all external forces (applied + reactions = K u at equilibrium), trapezoidal in the increment.
+      work += 0.5 * (fint[k] + fint_prev[k]) * (uv[k] - u_prev[k]);
+    }
+    u_prev = uv;
+    fint_prev = fint;
+
+    IncrementRecord rec;
+    rec.increment = i + 1;
+    rec.load_factor = lambda;
+    rec.reactions = sum_reactions(sets, reaction, dim);
+    rec.strain_energy = energy;
+    rec.external_work = work;
+    rec.iterations = summary.last_solve.iterations;
+    rec.relative_residual = summary.last_solve.relative_residual;
+    rec.wall_time = std::chrono::duration<double>(clock::now() - start).count();
+    output.add_row(rec);
+    const int every = config.output.every;
+    if ((i + 1) % every == 0 || i + 1 == total) output.write_increment_vtu(model, i + 1, lambda, uv);
+
+    summary.increments_done = i + 1;
+    summary.displacement = uv;
+    summary.reactions = rec.reactions;
+    summary.strain_energy = energy;
+    summary.external_work = work;
+    progress.update(i + 1, fmt::format("{} its, residual {:.1e}", rec.iterations, rec.relative_residual));
+  }
+  progress.finish();
+  return summary;
+}
+
+}  // namespace perimorph::driver

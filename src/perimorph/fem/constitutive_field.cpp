@@ -1,0 +1,32 @@
+#include "perimorph/fem/constitutive_field.hpp"
+
+#include "perimorph/core/error.hpp"
+#include "perimorph/fem/material.hpp"
+
+namespace perimorph::fem {
+
+ConstitutiveField::ConstitutiveField(int dim, Index num_cells, int points_per_cell)
+    : dim_(dim), nv_(voigt_size(dim)), npts_(points_per_cell),
+      first_(static_cast<std::size_t>(num_cells), -1), per_point_(static_cast<std::size_t>(num_cells), 0) {}
+
+int ConstitutiveField::add_tensor(const Eigen::MatrixXd& C) {
+  PERIMORPH_ASSERT(C.rows() == nv_ && C.cols() == nv_, "tensor size does not match the model dimension");
+  const auto id = static_cast<int>(data_.size() / static_cast<std::size_t>(nv_ * nv_));
+  data_.insert(data_.end(), C.data(), C.data() + nv_ * nv_);
+  return id;
+}
+
+void ConstitutiveField::set_cell(Index c, int id) {
+  first_[static_cast<std::size_t>(c)] = id;
+  per_point_[static_cast<std::size_t>(c)] = 0;
+}
+
+void ConstitutiveField::set_cell_points(Index c, std::span<const Eigen::MatrixXd> C) {
+  PERIMORPH_ASSERT(static_cast<int>(C.size()) == npts_, "one tensor per quadrature point expected");
+  const int id = add_tensor(C[0]);
+  for (std::size_t q = 1; q < C.size(); ++q) add_tensor(C[q]);
+  first_[static_cast<std::size_t>(c)] = id;
+  per_point_[static_cast<std::size_t>(c)] = 1;
+}
+
+}  // namespace perimorph::fem

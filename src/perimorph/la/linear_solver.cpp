@@ -1,0 +1,83 @@
+#include "perimorph/la/linear_solver.hpp"
+
+#include "perimorph/la/petsc_check.hpp"
+
+#include <petscksp.h>
+
+namespace perimorph::la {
+
+LinearSolver::LinearSolver(double rtol, int max_iterations) {
+  PM_PETSC(KSPCreate(PETSC_COMM_WORLD, &ksp_));
+  PM_PETSC(KSPSetType(ksp_, KSPCG));
+  PC pc = nullptr;
+  PM_PETSC(KSPGetPC(ksp_, &pc));
+  PM_PETSC(PCSetType(pc, PCGAMG));
+  PM_PETSC(KSPSetTolerances(ksp_, rtol, PETSC_DEFAULT, PETSC_DEFAULT, max_iterations));
+  PM_PETSC(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
+  PM_PETSC(KSPSetFromOptions(ksp_));
+}
+
+LinearSolver::~LinearSolver() {
+  if (ksp_) KSPDestroy(&ksp_);
+}
+
+void LinearSolver::set_operator(Matrix& A, std::span<const Vec3> node_coordinates, int dim) {
+  A_ = &A;
+  // Rigid-body modes from the dof-node coordinates (block size = dim).
+  Vec coords = nullptr;
+  PM_PETSC(VecCreate(PETSC_COMM_WORLD, &coords));
+  PM_PETSC(VecSetSizes(coords, static_cast<PetscInt>(node_coordinates.size()) * dim, PETSC_DECIDE));
+  PM_PETSC(VecSetBlockSize(coords, dim));
+  PM_PETSC(VecSetType(coords, VECSTANDARD));
+  PetscScalar* c = nullptr;
+  PM_PETSC(VecGetArray(coords, &c));
+  for (std::size_t n = 0; n < node_coordinates.size(); ++n)
+    for (int d = 0; d < dim; ++d) c[n * static_cast<std::size_t>(dim) + static_cast<std::size_t>(d)] = node_coordinates[n][d];
+  PM_PETSC(VecRestoreArray(coords, &c));
+  MatNullSpace nullsp = nullptr;
+  PM_PETSC(MatNullSpaceCreateRigidBody(coords, &nullsp));
+  PM_PETSC(MatSetNearNullSpace(A.handle(), nullsp));
+  PM_PETSC(MatNullSpaceDestroy(&nullsp));
+  PM_PETSC(VecDestroy(&coords));
+  PM_PETSC(KSPSetOperators(ksp_, A.handle(), A.handle()));
+}
+
+SolveReport LinearSolver::solve(const Vector& b, Vector& x) {
+  PERIMORPH_ASSERT(A_ != nullptr, "set_operator must be called before solve");
+  PM_PETSC(KSPSolve(ksp_, b.handle(), x.handle()));
+  SolveReport report;
+  KSPConvergedReason reason;
+  PM_PETSC(KSPGetConvergedReason(ksp_, &reason));
+  PetscInt its = 0;
+  PM_PETSC(KSPGetIterationNumber(ksp_, &its));
+  report.iterations = static_cast<int>(its);
+  report.reason = KSPConvergedReasons[reason];
+  KSPType ktype = nullptr;
+  PM_PETSC(KSPGetType(ksp_, &ktype));
+  PC pc = nullptr;
+  PM_PETSC(KSPGetPC(ksp_, &pc));
+  PCType ptype = nullptr;
+  PM_PETSC(PCGetType(pc, &ptype));
+  report.ksp_type = ktype ? ktype : "";
+  report.pc_type = ptype ? ptype : "";
+
+  Vector r(b.size(), 1);
+  A_->mult(x, r);
+  r.axpy(-1.0, b);
+  const double bnorm = b.norm2();
+  report.relative_residual = bnorm > 0 ? r.norm2() / bnorm : r.norm2();
+
+  if (reason < 0)
+    throw SolverError(fmt::format(
+        "the linear solver ({} + {}) diverged: {} after {} iterations, relative residual {:.3e}. "
+        "Try a direct solve (-ksp_type preonly -pc_type cholesky), more iterations (-ksp_max_it), "
+        "or check the boundary conditions: an unconstrained rigid-body motion makes the matrix singular",
+        report.ksp_type, report.pc_type, report.reason, report.iterations, report.relative_residual));
+  if (!x.all_finite() || !std::isfinite(report.relative_residual))
+    throw SolverError(fmt::format("the solution contains NaN or Inf ({} + {}, {} iterations); the matrix is "
+                                  "probably singular or the material data invalid",
+                                  report.ksp_type, report.pc_type, report.iterations));
+  return report;
+}
+
+}  // namespace perimorph::la

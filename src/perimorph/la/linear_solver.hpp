@@ -1,0 +1,42 @@
+#pragma once
+// PETSc KSP/PC wrapper. Default: conjugate gradients with GAMG preconditioning
+// and the rigid-body near-null space (THEORY §4, "Solver"); every PETSc option
+// from the case file or the command line overrides it (-ksp_type preonly
+// -pc_type cholesky for a direct solve). Solves are warm-started from x.
+
+#include "perimorph/core/types.hpp"
+#include "perimorph/la/matrix.hpp"
+#include "perimorph/la/vector.hpp"
+
+#include <span>
+#include <string>
+
+namespace perimorph::la {
+
+struct SolveReport {
+  int iterations = 0;
+  double relative_residual = 0.0;  ///< ||b − A x|| / ||b|| (true residual)
+  std::string reason;              ///< PETSc's converged/diverged reason
+  std::string ksp_type, pc_type;
+};
+
+class LinearSolver {
+public:
+  LinearSolver(double rtol, int max_iterations);
+  ~LinearSolver();
+  LinearSolver(const LinearSolver&) = delete;
+  LinearSolver& operator=(const LinearSolver&) = delete;
+
+  /// Sets the operator (and preconditioner matrix). Call again after the
+  /// matrix values change; the near-null space is attached to A.
+  void set_operator(Matrix& A, std::span<const Vec3> node_coordinates, int dim);
+  /// Solves A x = b starting from x. Throws SolverError on divergence or a
+  /// non-finite solution, naming PETSc's reason and the options to try.
+  SolveReport solve(const Vector& b, Vector& x);
+
+private:
+  PetscKspHandle ksp_ = nullptr;
+  const Matrix* A_ = nullptr;
+};
+
+}  // namespace perimorph::la

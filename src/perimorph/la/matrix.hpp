@@ -1,0 +1,57 @@
+#pragma once
+// A PETSc AIJ matrix (RAII, move-only) created with exact preallocation from a
+// SparsityPattern; inserting outside the pattern is an error. It implements
+// assembly::MatrixInserter, so assembly code never sees PETSc.
+
+#include "perimorph/assembly/inserter.hpp"
+#include "perimorph/assembly/sparsity.hpp"
+#include "perimorph/la/petsc_fwd.hpp"
+#include "perimorph/la/vector.hpp"
+
+#include <Eigen/Core>
+
+#include <span>
+
+namespace perimorph::la {
+
+class Matrix final : public assembly::MatrixInserter {
+public:
+  explicit Matrix(const assembly::SparsityPattern& pattern);
+  ~Matrix() override;
+  Matrix(Matrix&& other) noexcept;
+  Matrix& operator=(Matrix&& other) noexcept;
+  Matrix(const Matrix&) = delete;
+  Matrix& operator=(const Matrix&) = delete;
+
+  /// ADD_VALUES of a dense row-major block.
+  void add(std::span<const Index> rows, std::span<const Index> cols, std::span<const double> values) override;
+  void zero_entries();
+  /// Ends an insertion phase (MatAssemblyBegin/End, final).
+  void finalize();
+  /// A copy with the same pattern and values.
+  Matrix duplicate() const;
+
+  /// y ← A x
+  void mult(const Vector& x, Vector& y) const;
+  /// Exact elimination of Dirichlet rows and columns (THEORY §4): with x
+  /// holding the prescribed values on `rows`, sets rhs ← rhs − A[:, rows] x[rows],
+  /// zeroes those rows and columns, puts `diagonal` on the diagonal and sets
+  /// rhs[rows] = diagonal · x[rows]. The matrix stays symmetric.
+  void eliminate_dirichlet(std::span<const Index> rows, const Vector& x, Vector& rhs, double diagonal = 1.0);
+
+  Index rows() const;
+  /// Number of stored non-zeros (allocated = used after finalize).
+  double nonzeros() const;
+  /// Dense copy, for tests on tiny matrices.
+  Eigen::MatrixXd to_dense() const;
+  /// Marks the matrix symmetric positive definite (after finalize).
+  void set_spd();
+
+  PetscMatHandle handle() const { return m_; }
+
+private:
+  explicit Matrix(PetscMatHandle m) : m_(m) {}
+  PetscMatHandle m_ = nullptr;
+};
+
+}  // namespace perimorph::la

@@ -1,0 +1,13 @@
+#pragma once
+// Opaque PETSc handle types, so that la/ headers can be included anywhere
+// without exposing PETSc: only la/*.cpp include the PETSc headers.
+
+struct _p_Mat;
+struct _p_Vec;
+struct _p_KSP;
+
+namespace perimorph::la {
+using PetscMatHandle = _p_Mat*;
+using PetscVecHandle = _p_Vec*;
+using PetscKspHandle = _p_KSP*;
+}  // namespace perimorph::la

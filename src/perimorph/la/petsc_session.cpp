@@ -1,0 +1,51 @@
+#include "perimorph/la/petsc_session.hpp"
+
+#include "perimorph/core/types.hpp"
+#include "perimorph/la/petsc_check.hpp"
+
+#include <petscsys.h>
+
+#include <cctype>
+#include <iterator>
+#include <sstream>
+#include <type_traits>
+#include <vector>
+
+static_assert(std::is_same_v<PetscInt, perimorph::Index>, "perimorph::Index must match PetscInt");
+static_assert(std::is_same_v<PetscScalar, double>, "perimorph needs a real, double-precision PETSc");
+
+namespace perimorph::la {
+
+PetscSession::PetscSession(int& argc, char**& argv) {
+  PM_PETSC(PetscInitialize(&argc, &argv, nullptr, nullptr));
+}
+
+PetscSession::PetscSession() { PM_PETSC(PetscInitializeNoArguments()); }
+
+PetscSession::~PetscSession() { PetscFinalize(); }
+
+void add_options(const std::string& options) {
+  // Insert option by option, skipping those already given (command line wins).
+  std::istringstream in(options);
+  std::vector<std::string> words{std::istream_iterator<std::string>(in), std::istream_iterator<std::string>()};
+  for (std::size_t i = 0; i < words.size(); ++i) {
+    const std::string& name = words[i];
+    if (name.size() < 2 || name[0] != '-')
+      throw InputError(fmt::format("PETSc options must start with '-': got '{}' in \"{}\"", name, options));
+    std::string value;
+    if (i + 1 < words.size() && !(words[i + 1][0] == '-' && words[i + 1].size() > 1 && std::isalpha(static_cast<unsigned char>(words[i + 1][1]))))
+      value = words[++i];
+    PetscBool set = PETSC_FALSE;
+    PM_PETSC(PetscOptionsHasName(nullptr, nullptr, name.c_str(), &set));
+    if (set) continue;
+    PM_PETSC(PetscOptionsSetValue(nullptr, name.c_str(), value.empty() ? nullptr : value.c_str()));
+  }
+}
+
+int world_size() {
+  PetscMPIInt size = 1;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  return size;
+}
+
+}  // namespace perimorph::la

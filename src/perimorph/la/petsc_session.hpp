@@ -1,0 +1,28 @@
+#pragma once
+// RAII for PetscInitialize/PetscFinalize. Command-line options after the
+// program's own are handed to PETSc's options database; add_options() inserts
+// a string of options (e.g. a case file's [solver] petsc_options) with lower
+// precedence than the command line.
+
+#include <string>
+
+namespace perimorph::la {
+
+class PetscSession {
+public:
+  PetscSession(int& argc, char**& argv);
+  PetscSession();
+  ~PetscSession();
+  PetscSession(const PetscSession&) = delete;
+  PetscSession& operator=(const PetscSession&) = delete;
+};
+
+/// Inserts options ("-ksp_type cg -pc_type gamg") into PETSc's database. Options
+/// already set (from the command line) keep their value. Throws InputError with
+/// PETSc's message if the string cannot be parsed.
+void add_options(const std::string& options);
+
+/// Number of MPI ranks in PETSC_COMM_WORLD.
+int world_size();
+
+}  // namespace perimorph::la
