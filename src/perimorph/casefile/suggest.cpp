@@ -41,7 +41,13 @@ std::string closest_match(std::string_view word, const std::vector<std::string>&
       best_distance = d;
     }
   }
-  return best ? *best : std::string{};
+  if (best) return *best;
+  // A truncated word ("dir" for "directory") is far in edit distance but clear.
+  if (word.size() >= 3)
+    for (const std::string& candidate : candidates)
+      if (candidate.size() > word.size() && edit_distance(word, candidate.substr(0, word.size())) == 0)
+        return candidate;
+  return {};
 }
 
 }  // namespace perimorph::casefile

@@ -13,8 +13,10 @@ std::size_t edit_distance(std::string_view a, std::string_view b);
 
 /// The candidate closest to `word` by edit_distance, if that distance is at
 /// most max(2, word.size() / 3) and less than the longer of the two lengths
-/// (so "x" does not suggest "E"); otherwise "". Ties go to the earlier
-/// candidate. An empty candidate list gives "".
+/// (so "x" does not suggest "E"); failing that, the first candidate that
+/// starts with `word` if `word` has 3 or more characters ("dir" suggests
+/// "directory"); otherwise "". Ties go to the earlier candidate. An empty
+/// candidate list gives "".
 std::string closest_match(std::string_view word, const std::vector<std::string>& candidates);
 
 }  // namespace perimorph::casefile

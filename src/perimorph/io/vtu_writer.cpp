@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cerrno>
@@ -109,7 +110,9 @@ void append_data_array(std::string& out, int indent, std::string_view name, int 
     out += "\n";
   } else {
     out += " format=\"ascii\">\n";
-    constexpr std::size_t per_line = std::is_same_v<T, double> ? 6 : 16;
+    // One line per entity for 3+ components, otherwise several per line.
+    const auto ncomp = static_cast<std::size_t>(std::max(components, 1));
+    const std::size_t per_line = std::is_same_v<T, double> ? ncomp * std::max<std::size_t>(1, 6 / ncomp) : 16;
     for (std::size_t i = 0; i < values.size(); ++i) {
       if (i % per_line == 0) {
         if (i > 0) out += "\n";

@@ -48,4 +48,16 @@ int world_size() {
   return size;
 }
 
+void set_option(const std::string& name, const std::string& value) {
+  if (name.size() < 2 || name[0] != '-')
+    throw InputError(fmt::format("PETSc option names must start with '-': got '{}'", name));
+  PM_PETSC(PetscOptionsSetValue(nullptr, name.c_str(), value.empty() ? nullptr : value.c_str()));
+}
+
+void clear_option(const std::string& name) {
+  if (name.size() < 2 || name[0] != '-')
+    throw InputError(fmt::format("PETSc option names must start with '-': got '{}'", name));
+  PM_PETSC(PetscOptionsClearValue(nullptr, name.c_str()));
+}
+
 }  // namespace perimorph::la

@@ -25,4 +25,12 @@ void add_options(const std::string& options);
 /// Number of MPI ranks in PETSC_COMM_WORLD.
 int world_size();
 
+/// Sets one option ("-ksp_type", "preonly"), replacing any value it had, the
+/// command line's included; an empty value sets a flag. For programs that
+/// change solvers between runs (benchmarks); case files use add_options.
+void set_option(const std::string& name, const std::string& value = "");
+
+/// Removes one option from PETSc's database; nothing happens if it is not set.
+void clear_option(const std::string& name);
+
 }  // namespace perimorph::la
