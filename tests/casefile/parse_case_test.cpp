@@ -364,7 +364,7 @@ TEST(CaseFileErrors, MessageNamesKeyValueAndRange) {
   std::string text = kMinimal2D;
   text.replace(text.find("nu = 0.3"), 8, "nu = 0.7");
   const std::string msg = error_of(text, "m.toml");
-  EXPECT_EQ(msg.rfind("m.toml:12:6: key 'material[1].nu': ", 0), 0u) << msg;
+  EXPECT_EQ(msg.rfind("m.toml:11:6: key 'material[1].nu': ", 0), 0u) << msg;
   EXPECT_TRUE(contains(msg, "nu = 0.7")) << msg;
   EXPECT_TRUE(contains(msg, "-1 < nu < 0.5")) << msg;
 }

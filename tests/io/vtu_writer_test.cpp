@@ -1,5 +1,5 @@
 // Output stage: .vtu files are checked by a minimal parse written here (not
-// the writer's code) and by the independent Python reader tests/io/read_vtu.py;
+// the writer's code) and by the independent Python reader python/read_vtu.py;
 // .pvd and .csv files are read back as text.
 #include "perimorph/io/csv_table.hpp"
 #include "perimorph/io/progress.hpp"
@@ -138,10 +138,10 @@ protected:
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  /// Runs tests/io/read_vtu.py with `args`; returns its exit status (0 = ok).
+  /// Runs python/read_vtu.py with `args`; returns its exit status (0 = ok).
   /// Its stderr goes to dir_/reader.err.
   int read_vtu(const std::string& args) {
-    const std::string cmd = "/usr/bin/python3 '" PERIMORPH_SOURCE_DIR "/tests/io/read_vtu.py' " + args +
+    const std::string cmd = "/usr/bin/python3 '" PERIMORPH_SOURCE_DIR "/python/read_vtu.py' " + args +
                             " 2> '" + (dir_ / "reader.err").string() + "'";
     return std::system(cmd.c_str());
   }

@@ -135,10 +135,10 @@ void read_mesh(const Table& root, CaseConfig& c) {
   const std::vector<Value> counts = cells.elements();
   if (counts.size() != static_cast<std::size_t>(dim))
     cells.fail(fmt::format("needs {} positive integers {}, got {}: {}", dim, for_dim(dim), counts.size(),
-                           detail::show(cells.node())));
+                           detail::render(cells.node())));
   double nodes = 1.0;
   for (int i = 0; i < dim; ++i) {
-    box.cells[static_cast<std::size_t>(i)] = counts[static_cast<std::size_t>(i)].integer(1, kMaxInt - 1);
+    box.cells[static_cast<std::size_t>(i)] = counts[static_cast<std::size_t>(i)].integer(1, kMaxInt);
     nodes *= box.cells[static_cast<std::size_t>(i)] + 1.0;
   }
   if (nodes * dim > static_cast<double>(kMaxInt))

@@ -23,16 +23,15 @@ std::string abridge(std::string text) {
   return text;
 }
 
-/// toml++'s own rendering of a node (floats keep their ".0").
-std::string render(const toml::node& node) {
-  std::ostringstream out;
-  node.visit([&](const auto& n) { out << n; });
-  return abridge(out.str());
-}
-
 std::string index_path(std::string_view path, std::size_t i) { return fmt::format("{}[{}]", path, i + 1); }
 
 }  // namespace
+
+std::string render(const toml::node& node) {
+  std::ostringstream out;
+  node.visit([&](const auto& n) { out << n; });  // floats keep their ".0"
+  return abridge(out.str());
+}
 
 void fail(const SourceLocation& where, std::string_view message) {
   throw InputError(fmt::format("{}: {}", where.describe(), message));
@@ -78,9 +77,7 @@ int Value::integer(int lo, int hi) const {
   if (const auto* f = node_->as_floating_point()) {
     const double v = f->get();
     if (std::isfinite(v) && v == std::floor(v) && std::abs(v) < 1e15)
-      fail(fmt::format("expected an integer, got the floating-point number {}; write {:.0f} without the "
-                       "decimal point",
-                       render(*node_), v));
+      fail(fmt::format("expected an integer, got the floating-point number {}; write {:.0f}", render(*node_), v));
     fail(fmt::format("expected an integer, got {}", show(*node_)));
   }
   const auto* i = node_->as_integer();
@@ -88,7 +85,8 @@ int Value::integer(int lo, int hi) const {
   const std::int64_t v = i->get();
   if (v < lo || v > hi) {
     if (hi == std::numeric_limits<int>::max())
-      fail(fmt::format("must be an integer of at least {}, got {}", lo, v));
+      fail(v < lo ? fmt::format("must be an integer of at least {}, got {}", lo, v)
+                  : fmt::format("is too large: at most {} is supported, got {}", hi, v));
     fail(fmt::format("must be an integer from {} to {}, got {}", lo, hi, v));
   }
   return static_cast<int>(v);

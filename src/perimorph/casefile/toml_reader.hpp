@@ -26,6 +26,9 @@ namespace perimorph::casefile::detail {
 /// (implicit tables included) a position; a missing one reads as 1:1.
 SourceLocation locate(const std::string& file, const toml::node& node, std::string path);
 
+/// toml++'s rendering of a value, cut to 60 characters: "[ 1, 2.0 ]".
+std::string render(const toml::node& node);
+
 /// A value for messages: "a string \"abc\"", "an integer 3",
 /// "a floating-point number 48.0", "an array [ 1, 2 ]", "a table { a = 1 }".
 std::string show(const toml::node& node);

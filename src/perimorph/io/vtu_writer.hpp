@@ -1,7 +1,7 @@
 #pragma once
 // VTK XML UnstructuredGrid (.vtu) writer: file format version 1.0,
 // header_type UInt64, byte_order LittleEndian, no compression. Readable by
-// ParaView/VTK and by the independent checker tests/io/read_vtu.py.
+// ParaView/VTK and by the independent checker python/read_vtu.py.
 
 #include "perimorph/io/grid.hpp"
 

@@ -13,8 +13,11 @@ LinearSolver::LinearSolver(double rtol, int max_iterations) {
   PM_PETSC(KSPGetPC(ksp_, &pc));
   PM_PETSC(PCSetType(pc, PCGAMG));
   PM_PETSC(KSPSetTolerances(ksp_, rtol, PETSC_DEFAULT, PETSC_DEFAULT, max_iterations));
-  PM_PETSC(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
   PM_PETSC(KSPSetFromOptions(ksp_));
+  // Warm start, except for a direct solve (preonly), which PETSc forbids it for.
+  PetscBool preonly = PETSC_FALSE;
+  PM_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(ksp_), KSPPREONLY, &preonly));
+  PM_PETSC(KSPSetInitialGuessNonzero(ksp_, preonly ? PETSC_FALSE : PETSC_TRUE));
 }
 
 LinearSolver::~LinearSolver() {

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Idempotent set-up: installs the Debian packages perimorph needs (only those
+# missing), configures and builds it (Release) into build/.
+#   scripts/setup.sh [extra cmake arguments]
+# Environment: PERIMORPH_BUILD_DIR (default build), PERIMORPH_WERROR=ON for CI.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(build-essential cmake ninja-build pkg-config petsc-dev libeigen3-dev libtomlplusplus-dev
+          libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev openmpi-bin
+          python3 python3-matplotlib python3-numpy)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  $SUDO apt-get update
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y --no-install-recommends \
+    -o DPkg::Lock::Timeout=600 "${missing[@]}"
+fi
+
+build_dir="${PERIMORPH_BUILD_DIR:-build}"
+cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DPERIMORPH_WERROR="${PERIMORPH_WERROR:-OFF}" "$@"
+cmake --build "$build_dir" --parallel "$(nproc)"
