@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Runs the local-elasticity benchmark (bench/local_elasticity_bench.cpp) and
+# writes docs/benchmarks/local-elasticity.md.
+#
+#   bench/run_local_bench.sh            build (if needed) and run everything
+#   BUILD_DIR=/path bench/run_local_bench.sh
+#
+# Results, in bench/results/:
+#   local_elasticity.json              matrix creation, assembly, CG + GAMG
+#   local_elasticity_direct<N>.json    MUMPS Cholesky at N³ cells, one process
+#   local_elasticity_direct<N>.log     MUMPS's own statistics (-mat_mumps_icntl_4 2)
+#   local_elasticity_direct<N>.status  exit code and time limit of that process
+# Each direct solve runs in its own process under a time limit
+# (DIRECT_LIMIT_20/40/60 seconds; 60³ gets ~10 minutes) because its cost grows
+# like N⁶: a case that does not finish is reported as "not run" with the reason.
+set -euo pipefail
+
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+BUILD_DIR="${BUILD_DIR:-$ROOT/build-bench}"
+RESULTS="$ROOT/bench/results"
+BIN="$BUILD_DIR/bench/local_elasticity_bench"
+export OMP_NUM_THREADS="${OMP_NUM_THREADS:-2}"
+# MUMPS prints through Fortran unit 6: unbuffered, so a killed run keeps its log.
+export GFORTRAN_UNBUFFERED_PRECONNECTED=y
+
+if [[ ! -f "$BUILD_DIR/build.ninja" ]]; then
+  cmake -S "$ROOT" -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPERIMORPH_BUILD_TESTS=OFF
+fi
+cmake --build "$BUILD_DIR" --target local_elasticity_bench
+
+mkdir -p "$RESULTS"
+
+echo "== matrix creation, assembly, CG + GAMG"
+"$BIN" --benchmark_filter='^(matrix_create|assemble|solve_cg_gamg)/' \
+  --benchmark_out="$RESULTS/local_elasticity.json" --benchmark_out_format=json
+
+declare -A LIMIT=([20]="${DIRECT_LIMIT_20:-600}" [40]="${DIRECT_LIMIT_40:-1800}" [60]="${DIRECT_LIMIT_60:-600}")
+for n in 20 40 60; do
+  echo "== MUMPS Cholesky, N = $n (limit ${LIMIT[$n]} s)"
+  json="$RESULTS/local_elasticity_direct$n.json"
+  rm -f "$json"
+  rc=0
+  timeout --signal=TERM --kill-after=30 "${LIMIT[$n]}" "$BIN" \
+    --benchmark_filter="^solve_mumps_cholesky/$n/" \
+    --benchmark_out="$json" --benchmark_out_format=json \
+    -mat_mumps_icntl_4 2 >"$RESULTS/local_elasticity_direct$n.log" 2>&1 || rc=$?
+  printf 'rc=%s\nlimit_s=%s\n' "$rc" "${LIMIT[$n]}" >"$RESULTS/local_elasticity_direct$n.status"
+  echo "   exit code $rc"
+  grep -E '^solve_mumps' "$RESULTS/local_elasticity_direct$n.log" || true
+done
+
+/usr/bin/python3 "$ROOT/bench/make_table.py"
