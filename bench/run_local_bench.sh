@@ -9,10 +9,13 @@
 #   local_elasticity.json              matrix creation, assembly, CG + GAMG
 #   local_elasticity_direct<N>.json    MUMPS Cholesky at N³ cells, one process
 #   local_elasticity_direct<N>.log     MUMPS's own statistics (-mat_mumps_icntl_4 2)
-#   local_elasticity_direct<N>.status  exit code and time limit of that process
+#   local_elasticity_direct<N>.status  exit code, limits and duration of that process
 # Each direct solve runs in its own process under a time limit
 # (DIRECT_LIMIT_20/40/60 seconds; 60³ gets ~10 minutes) because its cost grows
-# like N⁶: a case that does not finish is reported as "not run" with the reason.
+# like N⁶, and MUMPS may use at most DIRECT_MEMORY_PERCENT (80) % of the memory
+# available at the start (-mat_mumps_icntl_23: MUMPS refuses to factor when its
+# estimate exceeds that, instead of driving the machine out of memory). A case
+# that does not finish is reported as "not run" with the reason.
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -36,15 +39,19 @@ echo "== matrix creation, assembly, CG + GAMG"
 
 declare -A LIMIT=([20]="${DIRECT_LIMIT_20:-600}" [40]="${DIRECT_LIMIT_40:-1800}" [60]="${DIRECT_LIMIT_60:-600}")
 for n in 20 40 60; do
-  echo "== MUMPS Cholesky, N = $n (limit ${LIMIT[$n]} s)"
   json="$RESULTS/local_elasticity_direct$n.json"
   rm -f "$json"
+  avail_mb=$(awk '/^MemAvailable:/ {print int($2 / 1024)}' /proc/meminfo)
+  mem_mb=$((avail_mb * ${DIRECT_MEMORY_PERCENT:-80} / 100))
+  echo "== MUMPS Cholesky, N = $n (limit ${LIMIT[$n]} s, $mem_mb MB)"
   rc=0
+  start=$SECONDS
   timeout --signal=TERM --kill-after=30 "${LIMIT[$n]}" "$BIN" \
     --benchmark_filter="^solve_mumps_cholesky/$n/" \
     --benchmark_out="$json" --benchmark_out_format=json \
-    -mat_mumps_icntl_4 2 >"$RESULTS/local_elasticity_direct$n.log" 2>&1 || rc=$?
-  printf 'rc=%s\nlimit_s=%s\n' "$rc" "${LIMIT[$n]}" >"$RESULTS/local_elasticity_direct$n.status"
+    -mat_mumps_icntl_4 2 -mat_mumps_icntl_23 "$mem_mb" >"$RESULTS/local_elasticity_direct$n.log" 2>&1 || rc=$?
+  printf 'rc=%s\nlimit_s=%s\nelapsed_s=%s\nmemory_allowed_mb=%s\nmemory_percent=%s\n' "$rc" "${LIMIT[$n]}" \
+    "$((SECONDS - start))" "$mem_mb" "${DIRECT_MEMORY_PERCENT:-80}" >"$RESULTS/local_elasticity_direct$n.status"
   echo "   exit code $rc"
   grep -E '^solve_mumps' "$RESULTS/local_elasticity_direct$n.log" || true
 done

@@ -205,7 +205,9 @@ TEST(AssemblyLocal, TractionTotalsEqualTractionTimesArea) {
       for (int d = 0; d < 3; ++d) {
         const double f = F[static_cast<std::size_t>(3 * n + d)];
         total[d] += f;
-        if (dm.node_coordinate(n).x() != 2.0) EXPECT_EQ(f, 0.0) << "load off the face at node " << n;
+        if (dm.node_coordinate(n).x() != 2.0) {
+          EXPECT_EQ(f, 0.0) << "load off the face at node " << n;
+        }
       }
     EXPECT_NEAR((total - t * 1.5).norm(), 0.0, 1e-13);  // face 1 × 1.5
   }

@@ -1,6 +1,7 @@
 // Node-graph sparsity: row sizes on a structured grid, symmetry, sortedness,
 // DG cells, extra (non-local) cell pairs.
 #include "perimorph/assembly/sparsity.hpp"
+#include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/dofs/dof_map.hpp"
 #include "perimorph/mesh/box.hpp"
 
@@ -141,7 +142,8 @@ TEST(AssemblySparsity, ExtraCellPairsWidenRows) {
   const dofs::DofMap dm(m, 2);
   const SparsityPattern base = build_sparsity(dm);
   const std::vector<std::pair<Index, Index>> pairs{{0, 5}};  // cells (0,0) and (2,1)
-  const SparsityPattern p = build_sparsity(dm, pairs);
+  const auto graph = bonds::CellGraph::from_pairs(m.num_cells(), pairs);
+  const SparsityPattern p = build_sparsity(dm, &graph);
   expect_valid(p, dm, pairs);
   // Node 0 (only in cell 0) now couples to cell 5's nodes 6, 7, 10, 11.
   EXPECT_EQ(std::vector<Index>(p.row(0).begin(), p.row(0).end()), (std::vector<Index>{0, 1, 4, 5, 6, 7, 10, 11}));
@@ -155,7 +157,8 @@ TEST(AssemblySparsity, ExtraCellPairsWidenRows) {
     for (Index c : base.row(r)) EXPECT_TRUE(std::binary_search(p.row(r).begin(), p.row(r).end(), c));
   // A pair given in the other order, a duplicate, or a cell with itself yields the same pattern.
   const std::vector<std::pair<Index, Index>> same{{5, 0}, {0, 5}, {3, 3}};
-  const SparsityPattern q = build_sparsity(dm, same);
+  const auto same_graph = bonds::CellGraph::from_pairs(m.num_cells(), same);
+  const SparsityPattern q = build_sparsity(dm, &same_graph);
   EXPECT_EQ(q.row_offsets, p.row_offsets);
   EXPECT_EQ(q.columns, p.columns);
 }

@@ -11,8 +11,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <regex>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace perimorph::casefile {
@@ -257,7 +259,8 @@ gradient = [[1, 2], [3, 4]]
 }
 
 TEST(CaseFileParse, ExplicitLoadFactors) {
-  const CaseConfig c = parse_case_string(std::string(kMinimal2D) + "\n[loading]\nfactors = [0.5, 1, 0.25]\n", "f.toml");
+  const CaseConfig c =
+      parse_case_string(std::string(kMinimal2D) + "\n[loading]\nfactors = [0.5, 1, 0.25]\n", "f.toml");
   EXPECT_EQ(c.loading.factors, (std::vector<double>{0.5, 1.0, 0.25}));
 }
 
@@ -320,8 +323,8 @@ uz = 0
 }
 
 TEST(CaseFileParse, LocationsAndDescribe) {
-  const CaseConfig c = parse_case_string(std::string(kMinimal2D) + "\n[[dirichlet]]\nset = \"xmin\"\nux = 0\n",
-                                         "loc.toml");
+  const CaseConfig c =
+      parse_case_string(std::string(kMinimal2D) + "\n[[dirichlet]]\nset = \"xmin\"\nux = 0\n", "loc.toml");
   EXPECT_EQ(c.materials[0].where.file, "loc.toml");
   EXPECT_EQ(c.materials[0].where.line, 8);
   EXPECT_EQ(c.materials[0].where.key, "material[1]");
@@ -349,6 +352,266 @@ TEST(CaseFileParse, ExampleCaseIsValid) {
   EXPECT_EQ(c.dirichlet[1].value[1], 0.048);
   EXPECT_EQ(c.loading.factors.size(), 4u);
   EXPECT_EQ(c.solver.petsc_options, "-ksp_type cg -pc_type gamg");
+}
+
+// ------------------------------------------------------------ [nonlocal], [alpha]
+
+constexpr const char* kMinimal3D = R"(
+[mesh]
+dim = 3
+lower = [0, 0, 0]
+upper = [4, 4, 4]
+cells = [4, 4, 4]
+
+[[material]]
+name = "steel"
+E = 200
+nu = 0.25
+)";
+
+constexpr const char* kMinimal1D = R"(
+[mesh]
+dim = 1
+lower = [0]
+upper = [10]
+cells = [10]
+
+[[material]]
+name = "bar"
+E = 1
+nu = 0.25
+)";
+
+TEST(CaseFileNonlocal, AbsentSectionsGiveLocalDefaults) {
+  const CaseConfig c = parse_case_string(kMinimal2D, "local.toml");
+  EXPECT_FALSE(c.nonlocal.enabled);
+  EXPECT_EQ(c.alpha.value, 0.0);
+  EXPECT_TRUE(c.alpha.regions.empty());
+  EXPECT_EQ(c.materials[0].nu_where.key, "material[1].nu");
+  EXPECT_EQ(c.materials[0].nu_where.line, 11);
+  EXPECT_EQ(c.materials[0].nu_where.column, 6);
+}
+
+TEST(CaseFileNonlocal, FullSectionAndConstantAlpha) {
+  const CaseConfig c = parse_case_string(std::string(kMinimal2D) + R"(
+[nonlocal]
+kernel = "exponential"
+horizon = 2.625
+length = 0.525
+quadrature = 3
+discretization = "discontinuous-constant"
+coupling = "partition"
+
+[alpha]
+value = 1.0
+)",
+                                         "nl.toml");
+  const NonlocalSpec& n = c.nonlocal;
+  EXPECT_TRUE(n.enabled);
+  EXPECT_EQ(n.kernel, KernelKind::exponential);
+  EXPECT_EQ(n.horizon, 2.625);
+  EXPECT_EQ(n.length, 0.525);
+  EXPECT_EQ(n.quadrature, 3);
+  EXPECT_EQ(n.discretization, Discretization::discontinuous_constant);
+  EXPECT_EQ(n.coupling, Coupling::partition);
+  EXPECT_EQ(n.where.key, "nonlocal");
+  EXPECT_EQ(n.where.line, 13);
+  EXPECT_EQ(c.alpha.value, 1.0);
+  EXPECT_TRUE(c.alpha.regions.empty());
+  EXPECT_EQ(c.alpha.where.key, "alpha");
+  EXPECT_EQ(c.alpha.where.line, 21);
+  EXPECT_EQ(c.materials[0].nu, 0.3);  // a given nu is kept (checked later by the physics layer)
+  EXPECT_EQ(c.materials[0].nu_where.describe(), "nl.toml:11:6: key 'material[1].nu'");
+}
+
+TEST(CaseFileNonlocal, DefaultsAndOptionalNu) {
+  const CaseConfig c = parse_case_string(R"(
+[mesh]
+dim = 2
+lower = [0, 0]
+upper = [4, 2]
+cells = [4, 2]
+
+[[material]]
+name = "ceramic"
+E = 251300
+
+[nonlocal]
+kernel = "constant"
+horizon = 3
+)",
+                                         "d.toml");
+  const NonlocalSpec& n = c.nonlocal;
+  EXPECT_TRUE(n.enabled);
+  EXPECT_EQ(n.kernel, KernelKind::constant);
+  EXPECT_EQ(n.horizon, 3.0);
+  EXPECT_EQ(n.length, 0.0);
+  EXPECT_EQ(n.quadrature, 4);
+  EXPECT_EQ(n.discretization, Discretization::continuous);
+  EXPECT_EQ(n.coupling, Coupling::morphing);
+  EXPECT_EQ(c.alpha.value, 0.0);  // no [alpha]: purely local everywhere
+  EXPECT_TRUE(c.alpha.regions.empty());
+  ASSERT_EQ(c.materials.size(), 1u);
+  EXPECT_EQ(c.materials[0].E, 251300.0);
+  EXPECT_TRUE(std::isnan(c.materials[0].nu));
+  // nu left out: its location is the material's header, with the key nu.
+  EXPECT_EQ(c.materials[0].nu_where.describe(), "d.toml:8:1: key 'material[1].nu'");
+}
+
+TEST(CaseFileNonlocal, EveryKernel) {
+  const std::pair<const char*, KernelKind> kernels[] = {{"constant", KernelKind::constant},
+                                                        {"conical", KernelKind::conical},
+                                                        {"exponential", KernelKind::exponential},
+                                                        {"gaussian", KernelKind::gaussian}};
+  for (const auto& [name, kind] : kernels) {
+    SCOPED_TRACE(name);
+    const bool scaled = kind == KernelKind::exponential || kind == KernelKind::gaussian;
+    const CaseConfig c = parse_case_string(
+        std::string(kMinimal2D) + "\n[nonlocal]\nkernel = \"" + name + "\"\nhorizon = 1.5\n" +
+            (scaled ? "length = 0.25\n" : ""),
+        "k.toml");
+    EXPECT_EQ(c.nonlocal.kernel, kind);
+    EXPECT_EQ(c.nonlocal.length, scaled ? 0.25 : 0.0);
+  }
+  const CaseConfig c = parse_case_string(
+      std::string(kMinimal2D) + "\n[nonlocal]\nkernel = \"conical\"\nhorizon = 1\ndiscretization = \"discontinuous\"\n",
+      "dg.toml");
+  EXPECT_EQ(c.nonlocal.discretization, Discretization::discontinuous);
+}
+
+TEST(CaseFileAlpha, BallAndSlabIn2D) {
+  const CaseConfig c = parse_case_string(std::string(kMinimal2D) + R"(
+[nonlocal]
+kernel = "conical"
+horizon = 1
+
+[alpha]
+[[alpha.region]]
+shape = "ball"
+center = [2, 1]
+radius = 0.5
+transition = 6.0
+profile = "linear"
+
+[[alpha.region]]
+shape = "slab"
+point = [2, 0]
+normal = [3, 4]
+half_width = 0
+)",
+                                         "a.toml");
+  ASSERT_EQ(c.alpha.regions.size(), 2u);
+  EXPECT_EQ(c.alpha.value, 0.0);
+  EXPECT_EQ(c.alpha.where.line, 17);
+  const AlphaRegionSpec& ball = c.alpha.regions[0];
+  EXPECT_EQ(ball.shape, AlphaShapeKind::ball);
+  EXPECT_EQ(ball.point, Vec3(2, 1, 0));
+  EXPECT_EQ(ball.radius, 0.5);
+  EXPECT_EQ(ball.transition, 6.0);
+  EXPECT_EQ(ball.profile, AlphaProfile::linear);
+  EXPECT_EQ(ball.where.key, "alpha.region[1]");
+  EXPECT_EQ(ball.where.line, 18);
+  const AlphaRegionSpec& slab = c.alpha.regions[1];
+  EXPECT_EQ(slab.shape, AlphaShapeKind::slab);
+  EXPECT_EQ(slab.point, Vec3(2, 0, 0));
+  EXPECT_NEAR((slab.direction - Vec3(0.6, 0.8, 0)).norm(), 0.0, 1e-15);  // normalized
+  EXPECT_EQ(slab.half_width, 0.0);
+  EXPECT_EQ(slab.transition, 0.0);  // defaults
+  EXPECT_EQ(slab.profile, AlphaProfile::cubic);
+  EXPECT_EQ(slab.where.key, "alpha.region[2]");
+  EXPECT_EQ(slab.where.line, 25);
+}
+
+TEST(CaseFileAlpha, IntervalIn1D) {
+  const CaseConfig c = parse_case_string(std::string(kMinimal1D) + R"(
+[nonlocal]
+kernel = "gaussian"
+horizon = 1
+length = 0.2
+
+[[alpha.region]]
+shape = "interval"
+lower = 4
+upper = 6.5
+profile = "heaviside"
+transition = 1
+)",
+                                         "i.toml");
+  ASSERT_EQ(c.alpha.regions.size(), 1u);
+  const AlphaRegionSpec& r = c.alpha.regions[0];
+  EXPECT_EQ(r.shape, AlphaShapeKind::interval);
+  EXPECT_EQ(r.lower.x(), 4.0);
+  EXPECT_EQ(r.upper.x(), 6.5);
+  EXPECT_EQ(r.profile, AlphaProfile::heaviside);
+  EXPECT_EQ(r.transition, 1.0);
+  EXPECT_EQ(r.where.key, "alpha.region[1]");
+  EXPECT_EQ(c.alpha.where.key, "alpha");  // implicit [alpha] table
+}
+
+TEST(CaseFileAlpha, CylinderAndInfiniteBoxIn3D) {
+  const CaseConfig c = parse_case_string(std::string(kMinimal3D) + R"(
+[nonlocal]
+kernel = "constant"
+horizon = 1
+
+[[alpha.region]]
+shape = "cylinder"
+point = [2, 2, 0]
+axis = [0, 0, 2]
+radius = 1.25
+
+[[alpha.region]]
+shape = "box"
+lower = [-inf, 1, 2]
+upper = [inf, 3, +inf]
+transition = 0.5
+)",
+                                         "c.toml");
+  ASSERT_EQ(c.alpha.regions.size(), 2u);
+  const AlphaRegionSpec& cyl = c.alpha.regions[0];
+  EXPECT_EQ(cyl.shape, AlphaShapeKind::cylinder);
+  EXPECT_EQ(cyl.point, Vec3(2, 2, 0));
+  EXPECT_EQ(cyl.direction, Vec3(0, 0, 1));
+  EXPECT_EQ(cyl.radius, 1.25);
+  const AlphaRegionSpec& box = c.alpha.regions[1];
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(box.shape, AlphaShapeKind::box);
+  EXPECT_EQ(box.lower, Vec3(-inf, 1, 2));
+  EXPECT_EQ(box.upper, Vec3(inf, 3, inf));
+  EXPECT_EQ(box.transition, 0.5);
+}
+
+TEST(CaseFileAlpha, ErrorsNameKeyAndAlternatives) {
+  const std::string nl = std::string(kMinimal2D) + "\n[nonlocal]\nkernel = \"constant\"\nhorizon = 1\n";
+  // A key of another shape names what this shape takes.
+  std::string msg = error_of(nl + "[[alpha.region]]\nshape = \"ball\"\ncenter = [1, 1]\nradius = 1\nnormal = [1, 0]\n",
+                             "s.toml");
+  EXPECT_EQ(msg.rfind("s.toml:20:1: key 'alpha.region[1].normal' is not allowed here: a ball takes center = "
+                      "[x, y] and radius",
+                      0),
+            0u)
+      << msg;
+  // A misspelt key is caught before the shape is read.
+  msg = error_of(nl + "[[alpha.region]]\nshap = \"ball\"\n", "s.toml");
+  EXPECT_TRUE(contains(msg, "unknown key 'alpha.region[1].shap'; did you mean 'alpha.region[1].shape'?")) << msg;
+  // An unknown shape lists the shapes.
+  msg = error_of(nl + "[[alpha.region]]\nshape = \"sphere\"\n", "s.toml");
+  EXPECT_TRUE(contains(msg, "key 'alpha.region[1].shape': unknown shape \"sphere\"")) << msg;
+  EXPECT_TRUE(contains(msg, "\"interval\", \"slab\", \"ball\", \"cylinder\", \"box\"")) << msg;
+  // nan is no bound of a box.
+  msg = error_of(nl + "[[alpha.region]]\nshape = \"box\"\nlower = [nan, 0]\nupper = [1, 1]\n", "s.toml");
+  EXPECT_TRUE(contains(msg, "key 'alpha.region[1].lower[1]': expected a number (inf and -inf are allowed here)"))
+      << msg;
+  // Without [nonlocal], nu stays required and says when it is not.
+  std::string local = kMinimal2D;
+  local.erase(local.find("nu = 0.3"), 8);
+  msg = error_of(local, "s.toml");
+  EXPECT_TRUE(contains(msg, "key 'material[1].nu': missing required key")) << msg;
+  EXPECT_TRUE(contains(msg, "[nonlocal]")) << msg;
+  // With [nonlocal], a given nu is still range-checked.
+  std::string bad_nu = nl;
+  bad_nu.replace(bad_nu.find("nu = 0.3"), 8, "nu = 0.5");
+  EXPECT_TRUE(contains(error_of(bad_nu), "key 'material[1].nu': nu = 0.5 is out of range"));
 }
 
 TEST(CaseFileErrors, MissingFileIsReported) {
@@ -398,8 +661,9 @@ TEST(CaseFileErrors, EveryBadCaseFailsWithALocatedMessage) {
     } catch (const InputError& e) {
       message = e.what();
     }
-    const std::regex located(std::regex_replace(file.string(), std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
-                             R"(:[0-9]+:[0-9]+: .+)");
+    const std::regex located(
+        std::regex_replace(file.string(), std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
+        R"(:[0-9]+:[0-9]+: .+)");
     EXPECT_TRUE(std::regex_match(message, located)) << "not 'FILE:LINE:COL: ...': " << message;
     EXPECT_TRUE(contains(message, expected)) << "expected '" << expected << "' in: " << message;
   }

@@ -119,7 +119,9 @@ void check_linear_reproduction(bool affine) {
     // Gradients of the coordinates are the identity; of a constant, zero.
     EXPECT_NEAR((grad * X.transpose() - MatD::Identity()).norm(), 0.0, 1e-13);
     EXPECT_NEAR(grad.rowwise().sum().norm(), 0.0, 1e-13);
-    if (affine) EXPECT_NEAR(detJ, A.determinant(), 1e-13);
+    if (affine) {
+      EXPECT_NEAR(detJ, A.determinant(), 1e-13);
+    }
     EXPECT_GT(detJ, 0.0);
   }
 }

@@ -106,8 +106,9 @@ TEST(MeshCut, ThroughCut2D) {
   // The two halves are disconnected.
   for (Index a = 0; a < m.num_cells(); ++a)
     for (Index b = 0; b < m.num_cells(); ++b)
-      if (m.cell_centroid(a).y() < 2 && m.cell_centroid(b).y() > 2)
+      if (m.cell_centroid(a).y() < 2 && m.cell_centroid(b).y() > 2) {
         EXPECT_TRUE(shared(m, a, b).empty()) << a << " " << b;
+      }
   for (Index n = 25; n < 30; ++n) EXPECT_EQ(m.node(n).y(), 2.0);
   EXPECT_EQ(m.node_sets.at("xmin").size(), 6u);
   EXPECT_EQ(m.node_sets.at("xmax").size(), 6u);

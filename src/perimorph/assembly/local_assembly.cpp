@@ -105,6 +105,8 @@ CellFields cell_strain_stress_dim(const LocalSpace& s, const fem::ConstitutiveFi
   out.energy_density.assign(static_cast<std::size_t>(ncells), 0.0);
 #pragma omp parallel for schedule(static)
   for (Index c = 0; c < ncells; ++c) {
+    // DG degree 0 cells have no strain of their own (constant displacement): left 0.
+    if (static_cast<int>(s.dofmap.cell_nodes(c).size()) != fem::q1_nodes<D>) continue;
     const auto X = cell_coordinates<D>(s.mesh, c);
     const auto ue = gather<D>(s.dofmap, c, u);
     fem::VoigtVector<D> eps_sum = fem::VoigtVector<D>::Zero(), sig_sum = fem::VoigtVector<D>::Zero();

@@ -45,8 +45,9 @@ void assemble_body_force(const LocalSpace& space, const std::function<Vec3(const
 void assemble_traction(const LocalSpace& space, std::span<const mesh::CellFace> faces, const Vec3& t,
                        std::span<double> F);
 
-/// Volume-weighted cell averages of the strain and stress (Voigt, engineering
-/// shear; voigt_size(dim) values per cell) for the displacement u (dof vector).
+/// Volume-weighted cell averages of the strain and of the local stress
+/// σ = C(x) : ε (Voigt, engineering shear; voigt_size(dim) values per cell)
+/// for the displacement u (dof vector). DG degree 0 cells are left at 0.
 struct CellFields {
   std::vector<double> strain, stress;
   std::vector<double> energy_density;  ///< 1/2 σ:ε averaged over the cell

@@ -11,6 +11,9 @@
 namespace perimorph::dofs {
 class DofMap;
 }
+namespace perimorph::bonds {
+struct CellGraph;
+}
 
 namespace perimorph::assembly {
 
@@ -25,9 +28,10 @@ struct SparsityPattern {
   }
 };
 
-/// Pattern of the blocks coupling the dof nodes of cell pairs (c, c) for every
-/// cell, plus (a, b) for every extra pair given (non-local coupling, both
-/// directions added).
-SparsityPattern build_sparsity(const dofs::DofMap& dofmap, std::span<const std::pair<Index, Index>> extra_cell_pairs = {});
+/// Pattern coupling the dof nodes of every cell with themselves (local model)
+/// and, if a cell graph is given, with the dof nodes of every neighbour cell
+/// (non-local model). Built row by row with a marker array: memory is the
+/// pattern itself.
+SparsityPattern build_sparsity(const dofs::DofMap& dofmap, const bonds::CellGraph* graph = nullptr);
 
 }  // namespace perimorph::assembly

@@ -54,7 +54,7 @@ struct RegionSpec {
   SourceLocation where;
 };
 
-enum class PlaneMode { strain, stress };
+using PlaneMode = perimorph::PlaneMode;
 
 /// [model]
 struct ModelSpec {
@@ -68,11 +68,17 @@ enum class MaterialKind { isotropic, orthotropic };
 /// [[material]]: assigned to a region ("all" = every cell not claimed by a
 /// later material). Orthotropic: engineering constants in material axes; the
 /// axes are the columns of `axes` (from `rotation`, see docs).
+/// Isotropic `nu`: with [nonlocal] it may be left out and is then NaN (the
+/// physics layer takes the central-force value, 1/4 or 1/3, and checks a
+/// given one against it); a given nu satisfies -1 < nu < 0.5.
 struct MaterialSpec {
   std::string name;
   std::string region = "all";
   MaterialKind kind = MaterialKind::isotropic;
   double E = 0.0, nu = 0.0;
+  /// Isotropic: where `nu` is (key 'material[k].nu'), for messages about it;
+  /// if nu was left out, the material's header with that key.
+  SourceLocation nu_where;
   double E1 = 0.0, E2 = 0.0, E3 = 0.0, nu12 = 0.0, nu13 = 0.0, nu23 = 0.0, G12 = 0.0, G13 = 0.0, G23 = 0.0;
   Mat3 axes = Mat3::Identity();
   SourceLocation where;
@@ -118,6 +124,58 @@ struct OutputSpec {
   int every = 1;  ///< write VTU every n increments (and always the last)
 };
 
+enum class KernelKind { constant, conical, exponential, gaussian };
+enum class Discretization { continuous, discontinuous, discontinuous_constant };
+enum class Coupling { morphing, partition };
+
+/// [nonlocal]: the bond-based peridynamic model (THEORY §1, §2, §4). Its
+/// micromodulus is calibrated from the local isotropic material. Parsed by
+/// parse_nonlocal.cpp; `where` is the [nonlocal] header.
+struct NonlocalSpec {
+  bool enabled = false;  ///< the section is present
+  KernelKind kernel = KernelKind::constant;
+  double horizon = 0.0;  ///< δ > 0
+  double length = 0.0;   ///< l > 0 (exponential, gaussian only)
+  int quadrature = 4;    ///< Gauss points per direction of the non-local double integral
+  /// Elements used where the model is purely non-local (local stiffness ≡ 0):
+  /// continuous (CG), discontinuous (DG, private vertex nodes) or
+  /// discontinuous_constant (DG degree 0: one node per element).
+  Discretization discretization = Discretization::continuous;
+  Coupling coupling = Coupling::morphing;
+  SourceLocation where;
+};
+
+enum class AlphaShapeKind { interval, slab, ball, cylinder, box };
+enum class AlphaProfile { heaviside, linear, cubic };
+
+/// [[alpha.region]]: α = 1 inside the shape, profile(1 − d/transition) at
+/// distance d < transition outside it, 0 beyond (THEORY §3.1). Only the
+/// fields of `shape` are set; vector components beyond mesh.dim are 0.
+/// `where` is the entry's [[alpha.region]] header.
+struct AlphaRegionSpec {
+  AlphaShapeKind shape = AlphaShapeKind::ball;  ///< interval: 1D only; cylinder: 3D only
+  Vec3 point = Vec3::Zero();       ///< ball centre (`center`), cylinder and slab `point`
+  Vec3 direction = Vec3::UnitZ();  ///< slab `normal`, cylinder `axis`: normalized (given non-zero)
+  double radius = 0.0;             ///< ball, cylinder: > 0
+  double half_width = 0.0;         ///< slab: ≥ 0
+  /// interval: lower.x() < upper.x() (finite); box: lower < upper on each
+  /// axis, components may be -inf / +inf.
+  Vec3 lower = Vec3::Zero(), upper = Vec3::Zero();
+  double transition = 0.0;  ///< width L ≥ 0
+  AlphaProfile profile = AlphaProfile::cubic;
+  SourceLocation where;
+};
+
+/// [alpha]: either a constant `value` in [0, 1] or regions (α = max over them),
+/// never both. Absent: α ≡ 0 (value 0, no regions); present only with
+/// [nonlocal]. `where` is the [alpha] header (the first [[alpha.region]]
+/// header when there is no [alpha] line).
+struct AlphaSpec {
+  double value = 0.0;
+  std::vector<AlphaRegionSpec> regions;
+  SourceLocation where;
+};
+
 struct CaseConfig {
   std::string path;   ///< the case file as given
   std::string title;  ///< optional [case] title
@@ -130,6 +188,8 @@ struct CaseConfig {
   LoadingSpec loading;
   SolverSpec solver;
   OutputSpec output;
+  NonlocalSpec nonlocal;
+  AlphaSpec alpha;
   int dim() const { return mesh.box.dim; }
 };
 

@@ -6,13 +6,14 @@
 
 #include "perimorph/casefile/parse_case.hpp"
 
+#include "perimorph/casefile/parse_nonlocal.hpp"
 #include "perimorph/casefile/suggest.hpp"
 #include "perimorph/casefile/toml_reader.hpp"
 #include "perimorph/core/error.hpp"
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <Eigen/Dense>
 
 #include <cerrno>
 #include <filesystem>
@@ -37,7 +38,9 @@ constexpr int kMaxInt = std::numeric_limits<int>::max();
 constexpr const char* kAxis[3] = {"x", "y", "z"};
 constexpr const char* kDisplacement[3] = {"ux", "uy", "uz"};
 
-std::string for_dim(int dim) { return fmt::format("for dim = {}", dim); }
+std::string for_dim(int dim) {
+  return fmt::format("for dim = {}", dim);
+}
 
 /// "[0, 24]": the first n components of v.
 std::string point(const Vec3& v, int n) {
@@ -81,7 +84,8 @@ CutSpec read_cut(const Table& t, const BoxMesh& box) {
   const std::string shape2 = "a 2D cut is a segment: from = [x, y], to = [x, y]";
   const std::string shape3 = "a 3D cut is a parallelogram: origin = [x, y, z], edge1 = [...], edge2 = [...]";
   if (dim == 1) {
-    t.check_keys({"at"}, {{"from", shape1}, {"to", shape1}, {"origin", shape1}, {"edge1", shape1}, {"edge2", shape1}});
+    t.check_keys(
+        {"at"}, {{"from", shape1}, {"to", shape1}, {"origin", shape1}, {"edge1", shape1}, {"edge2", shape1}});
     const Value at = t.require("at", shape1);
     const double x = at.number();
     if (!(x > box.lower[0] && x < box.upper[0]))
@@ -105,8 +109,9 @@ CutSpec read_cut(const Table& t, const BoxMesh& box) {
     cut.edge2 = e2.vector(3, for_dim(3));
     const double scale = cut.edge1.norm() * cut.edge2.norm();
     if (!(cut.edge1.cross(cut.edge2).norm() > 1e-12 * scale))
-      e2.fail(fmt::format("edge1 = {} and edge2 = {} must be non-zero and not parallel (they span the cut's plane)",
-                          point(cut.edge1, 3), point(cut.edge2, 3)));
+      e2.fail(fmt::format(
+          "edge1 = {} and edge2 = {} must be non-zero and not parallel (they span the cut's plane)",
+          point(cut.edge1, 3), point(cut.edge2, 3)));
   }
   return cut;
 }
@@ -114,21 +119,25 @@ CutSpec read_cut(const Table& t, const BoxMesh& box) {
 void read_mesh(const Table& root, CaseConfig& c) {
   const auto mesh = root.table("mesh");
   if (!mesh)
-    root.fail("missing required table [mesh] (keys type = \"box\", dim, lower, upper, cells); see docs/case-file.md");
+    root.fail(
+        "missing required table [mesh] (keys type = \"box\", dim, lower, upper, cells); see "
+        "docs/case-file.md");
   mesh->check_keys({"type", "dim", "lower", "upper", "cells", "cut"});
   if (auto v = mesh->get("type")) {
     const std::string type = v->string();
     if (type != "box")
-      v->fail(fmt::format("unknown mesh type {:?}; allowed: \"box\" (a structured grid of bars, quadrilaterals or "
-                          "hexahedra)",
-                          type));
+      v->fail(fmt::format(
+          "unknown mesh type {:?}; allowed: \"box\" (a structured grid of bars, quadrilaterals or "
+          "hexahedra)",
+          type));
   }
   BoxMesh& box = c.mesh.box;
   box.dim = mesh->require("dim", "the space dimension: 1, 2 or 3").integer(1, 3);
   const int dim = box.dim;
   read_box(*mesh, dim, box.lower, box.upper);
 
-  const Value cells = mesh->require("cells", fmt::format("the number of cells along each axis, {} integers", dim));
+  const Value cells =
+      mesh->require("cells", fmt::format("the number of cells along each axis, {} integers", dim));
   if (!cells.node().is_array())
     cells.fail(fmt::format("expected an array of {} positive integers {}, got {}", dim, for_dim(dim),
                            detail::show(cells.node())));
@@ -142,9 +151,10 @@ void read_mesh(const Table& root, CaseConfig& c) {
     nodes *= box.cells[static_cast<std::size_t>(i)] + 1.0;
   }
   if (nodes * dim > static_cast<double>(kMaxInt))
-    cells.fail(fmt::format("gives {:.0f} nodes and {:.0f} displacement unknowns; at most {} are supported "
-                           "(32-bit indices)",
-                           nodes, nodes * dim, kMaxInt));
+    cells.fail(
+        fmt::format("gives {:.0f} nodes and {:.0f} displacement unknowns; at most {} are supported "
+                    "(32-bit indices)",
+                    nodes, nodes * dim, kMaxInt));
 
   for (const Table& t : mesh->tables("cut")) c.mesh.cuts.push_back(read_cut(t, box));
 }
@@ -161,18 +171,21 @@ void read_regions(const Table& root, CaseConfig& c) {
     const Value name = t.require("name", "the region's name, which [[material]] region = \"...\" refers to");
     r.name = name.name();
     if (r.name == "all")
-      name.fail("the name \"all\" is reserved (it stands for every cell not in another material's region); "
-                "choose another name");
+      name.fail(
+          "the name \"all\" is reserved (it stands for every cell not in another material's region); "
+          "choose another name");
     for (const RegionSpec& other : c.regions)
       if (other.name == r.name)
-        name.fail(fmt::format("duplicate region name {:?}: already used by {} (line {}); region names must be unique",
-                              r.name, other.where.key, other.where.line));
+        name.fail(fmt::format(
+            "duplicate region name {:?}: already used by {} (line {}); region names must be unique", r.name,
+            other.where.key, other.where.line));
     read_box(t, box.dim, r.lower, r.upper);
     for (int i = 0; i < box.dim; ++i)
       if (r.upper[i] <= box.lower[i] || r.lower[i] >= box.upper[i])
-        t.fail(fmt::format("the region box {} to {} lies outside the mesh box {} to {} (along {}), so it holds no cell",
-                           point(r.lower, box.dim), point(r.upper, box.dim), point(box.lower, box.dim),
-                           point(box.upper, box.dim), kAxis[i]));
+        t.fail(fmt::format(
+            "the region box {} to {} lies outside the mesh box {} to {} (along {}), so it holds no cell",
+            point(r.lower, box.dim), point(r.upper, box.dim), point(box.lower, box.dim),
+            point(box.upper, box.dim), kAxis[i]));
     c.regions.push_back(r);
   }
 }
@@ -184,7 +197,8 @@ void read_model(const Table& root, CaseConfig& c) {
   const int dim = c.dim();
   if (auto v = t->get("plane")) {
     if (dim != 2)
-      v->fail(fmt::format("applies to 2D cases only (plane strain or plane stress), but mesh.dim = {}; remove it", dim));
+      v->fail(fmt::format(
+          "applies to 2D cases only (plane strain or plane stress), but mesh.dim = {}; remove it", dim));
     const std::string plane = v->string();
     if (plane == "strain")
       c.model.plane = PlaneMode::strain;
@@ -195,8 +209,9 @@ void read_model(const Table& root, CaseConfig& c) {
   }
   if (auto v = t->get("thickness")) {
     if (dim == 3)
-      v->fail("applies to 1D (cross-section area) and 2D (out-of-plane thickness) cases only, but mesh.dim = 3; "
-              "remove it");
+      v->fail(
+          "applies to 1D (cross-section area) and 2D (out-of-plane thickness) cases only, but mesh.dim = 3; "
+          "remove it");
     c.model.thickness = positive(*v, dim == 1 ? "the cross-section area" : "the out-of-plane thickness");
   }
   if (auto v = t->get("local_quadrature")) c.model.local_quadrature = v->integer(1, 10);
@@ -205,21 +220,37 @@ void read_model(const Table& root, CaseConfig& c) {
 // ------------------------------------------------------------ [[material]]
 
 const std::vector<std::string> kIsotropicKeys{"E", "nu"};
-const std::vector<std::string> kOrthotropicKeys{"E1", "E2", "E3", "nu12", "nu13", "nu23", "G12", "G13", "G23"};
+const std::vector<std::string> kOrthotropicKeys{"E1",   "E2",  "E3",  "nu12", "nu13",
+                                                "nu23", "G12", "G13", "G23"};
 
-void read_isotropic(const Table& t, MaterialSpec& m) {
-  m.E = positive(t.require("E", "an isotropic material needs Young's modulus E and Poisson's ratio nu"),
-                 "Young's modulus");
-  const Value nu = t.require("nu", "an isotropic material needs Young's modulus E and Poisson's ratio nu");
+/// `nu` is optional in non-local cases: NaN when absent (the physics layer
+/// then takes the central-force value and checks a given one).
+void read_isotropic(const Table& t, MaterialSpec& m, bool nonlocal) {
+  const std::string needs =
+      nonlocal ? "an isotropic material needs Young's modulus E (and optionally Poisson's ratio nu)"
+               : "an isotropic material needs Young's modulus E and Poisson's ratio nu (nu may be left out "
+                 "only in non-local cases, with [nonlocal])";
+  m.E = positive(t.require("E", needs), "Young's modulus");
+  m.nu_where = t.where();
+  m.nu_where.key = t.key_path("nu");
+  const std::optional<Value> given = nonlocal ? t.get("nu") : std::optional<Value>(t.require("nu", needs));
+  if (!given) {
+    m.nu = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
+  const Value& nu = *given;
+  m.nu_where = nu.where();
   m.nu = nu.number();
   if (m.nu >= 0.5)
-    nu.fail(fmt::format("nu = {} is out of range: need -1 < nu < 0.5; a Poisson ratio of 0.5 or more makes an "
-                        "isotropic material incompressible (0.5) or unstable (above 0.5)",
-                        m.nu));
+    nu.fail(
+        fmt::format("nu = {} is out of range: need -1 < nu < 0.5; a Poisson ratio of 0.5 or more makes an "
+                    "isotropic material incompressible (0.5) or unstable (above 0.5)",
+                    m.nu));
   if (m.nu <= -1.0)
-    nu.fail(fmt::format("nu = {} is out of range: need -1 < nu < 0.5; a Poisson ratio of -1 or less makes the "
-                        "shear modulus E / (2 (1 + nu)) zero or negative, an unstable material",
-                        m.nu));
+    nu.fail(
+        fmt::format("nu = {} is out of range: need -1 < nu < 0.5; a Poisson ratio of -1 or less makes the "
+                    "shear modulus E / (2 (1 + nu)) zero or negative, an unstable material",
+                    m.nu));
 }
 
 /// Material axes from `rotation` (rows e1, e2, e3 in mesh coordinates):
@@ -230,18 +261,21 @@ Mat3 read_rotation(const Value& v, int dim) {
   for (int i = 0; i < 3; ++i)
     if (std::abs(r.row(i).norm() - 1.0) > 1e-6)
       rows[static_cast<std::size_t>(i)].fail(
-          fmt::format("row {} (material axis e{}) has length {:.7g}; every row must be a unit vector", i + 1, i + 1,
-                      r.row(i).norm()));
+          fmt::format("row {} (material axis e{}) has length {:.7g}; every row must be a unit vector", i + 1,
+                      i + 1, r.row(i).norm()));
   for (int i = 0; i < 3; ++i)
     for (int j = i + 1; j < 3; ++j)
       if (std::abs(r.row(i).dot(r.row(j))) > 1e-6)
-        v.fail(fmt::format("rows {} and {} (axes e{} and e{}) are not orthogonal: their dot product is {:.3g}",
-                           i + 1, j + 1, i + 1, j + 1, r.row(i).dot(r.row(j))));
+        v.fail(
+            fmt::format("rows {} and {} (axes e{} and e{}) are not orthogonal: their dot product is {:.3g}",
+                        i + 1, j + 1, i + 1, j + 1, r.row(i).dot(r.row(j))));
   if (r.determinant() < 0)
     v.fail("is a reflection (determinant -1); the axes must be right-handed (e3 = e1 x e2): reverse one row");
   if (dim == 2 && (r.col(2).cwiseAbs().maxCoeff() < 1.0 - 1e-6))
-    v.fail("in 2D one material axis must lie along z (a rotation about z, axes possibly permuted); otherwise the "
-           "in-plane problem couples to out-of-plane shear");
+    v.fail(
+        "in 2D one material axis must lie along z (a rotation about z, axes possibly permuted); otherwise "
+        "the "
+        "in-plane problem couples to out-of-plane shear");
   const Eigen::JacobiSVD<Mat3> svd(r, Eigen::ComputeFullU | Eigen::ComputeFullV);
   r = svd.matrixU() * svd.matrixV().transpose();
   return r.transpose();  // columns = axes
@@ -253,25 +287,32 @@ void read_orthotropic(const Table& t, MaterialSpec& m, int dim) {
   for (std::size_t k = 0; k < 9; ++k) {
     const Value v = t.require(kOrthotropicKeys[k], all);
     const bool is_nu = kOrthotropicKeys[k].starts_with("nu");
-    *targets[k] = is_nu ? v.number() : positive(v, kOrthotropicKeys[k][0] == 'E' ? "a Young's modulus" : "a shear modulus");
+    *targets[k] = is_nu
+                      ? v.number()
+                      : positive(v, kOrthotropicKeys[k][0] == 'E' ? "a Young's modulus" : "a shear modulus");
   }
   // Compliance S (normal block) positive definite, by Sylvester's criterion:
   // each pair (i, j) needs nu_ij^2 < E_i / E_j, and det S > 0.
   const double E[3] = {m.E1, m.E2, m.E3};
-  const struct { int i, j; double nu; const char* key; } pairs[3] = {
-      {0, 1, m.nu12, "nu12"}, {0, 2, m.nu13, "nu13"}, {1, 2, m.nu23, "nu23"}};
+  const struct {
+    int i, j;
+    double nu;
+    const char* key;
+  } pairs[3] = {{0, 1, m.nu12, "nu12"}, {0, 2, m.nu13, "nu13"}, {1, 2, m.nu23, "nu23"}};
   for (const auto& p : pairs)
     if (!(p.nu * p.nu < E[p.i] / E[p.j]))
-      t.get(p.key)->fail(fmt::format(
-          "{} = {} needs |{}| < sqrt(E{} / E{}) = {:.4g} for a positive-definite compliance (a stable material)",
-          p.key, p.nu, p.key, p.i + 1, p.j + 1, std::sqrt(E[p.i] / E[p.j])));
+      t.get(p.key)->fail(
+          fmt::format("{} = {} needs |{}| < sqrt(E{} / E{}) = {:.4g} for a positive-definite compliance (a "
+                      "stable material)",
+                      p.key, p.nu, p.key, p.i + 1, p.j + 1, std::sqrt(E[p.i] / E[p.j])));
   const double nu21 = m.nu12 * m.E2 / m.E1, nu31 = m.nu13 * m.E3 / m.E1, nu32 = m.nu23 * m.E3 / m.E2;
   const double det = 1 - m.nu12 * nu21 - m.nu23 * nu32 - m.nu13 * nu31 - 2 * nu21 * nu32 * m.nu13;
   if (!(det > 0))
-    t.fail(fmt::format("the Poisson ratios nu12 = {}, nu13 = {}, nu23 = {} make the compliance indefinite (an "
-                       "unstable material): 1 - nu12 nu21 - nu23 nu32 - nu13 nu31 - 2 nu21 nu32 nu13 = {:.4g} must be "
-                       "positive",
-                       m.nu12, m.nu13, m.nu23, det));
+    t.fail(fmt::format(
+        "the Poisson ratios nu12 = {}, nu13 = {}, nu23 = {} make the compliance indefinite (an "
+        "unstable material): 1 - nu12 nu21 - nu23 nu32 - nu13 nu31 - 2 nu21 nu32 nu13 = {:.4g} must be "
+        "positive",
+        m.nu12, m.nu13, m.nu23, det));
   if (auto v = t.get("rotation")) m.axes = read_rotation(*v, dim);
 }
 
@@ -283,23 +324,31 @@ MaterialSpec read_material(const Table& t, const CaseConfig& c) {
     if (type == "orthotropic")
       m.kind = MaterialKind::orthotropic;
     else if (type != "isotropic")
-      v->fail(fmt::format("unknown material type {:?}; allowed: \"isotropic\" (E, nu) or \"orthotropic\" (E1, E2, "
-                          "E3, nu12, nu13, nu23, G12, G13, G23, rotation)",
-                          type));
+      v->fail(fmt::format(
+          "unknown material type {:?}; allowed: \"isotropic\" (E, nu) or \"orthotropic\" (E1, E2, "
+          "E3, nu12, nu13, nu23, G12, G13, G23, rotation)",
+          type));
   }
   const bool iso = m.kind == MaterialKind::isotropic;
   std::vector<std::string> allowed{"name", "region", "type"};
   std::vector<std::pair<std::string, std::string>> hints;
   for (const std::string& k : kIsotropicKeys) {
-    if (iso) allowed.push_back(k);
-    else hints.emplace_back(k, "an orthotropic material takes E1, E2, E3, nu12, nu13, nu23, G12, G13, G23");
+    if (iso)
+      allowed.push_back(k);
+    else
+      hints.emplace_back(k, "an orthotropic material takes E1, E2, E3, nu12, nu13, nu23, G12, G13, G23");
   }
   for (const std::string& k : kOrthotropicKeys) {
-    if (!iso) allowed.push_back(k);
-    else hints.emplace_back(k, "it belongs to orthotropic materials; set type = \"orthotropic\" (this one is isotropic)");
+    if (!iso)
+      allowed.push_back(k);
+    else
+      hints.emplace_back(
+          k, "it belongs to orthotropic materials; set type = \"orthotropic\" (this one is isotropic)");
   }
-  if (!iso) allowed.emplace_back("rotation");
-  else hints.emplace_back("rotation", "only orthotropic materials have axes; set type = \"orthotropic\"");
+  if (!iso)
+    allowed.emplace_back("rotation");
+  else
+    hints.emplace_back("rotation", "only orthotropic materials have axes; set type = \"orthotropic\"");
   t.check_keys(allowed, hints);
 
   m.name = t.require("name", "every material needs a name, e.g. name = \"steel\"").name();
@@ -315,7 +364,7 @@ MaterialSpec read_material(const Table& t, const CaseConfig& c) {
     }
   }
   if (iso)
-    read_isotropic(t, m);
+    read_isotropic(t, m, c.nonlocal.enabled);
   else
     read_orthotropic(t, m, c.dim());
   return m;
@@ -324,8 +373,9 @@ MaterialSpec read_material(const Table& t, const CaseConfig& c) {
 void read_materials(const Table& root, CaseConfig& c) {
   const std::vector<Table> tables = root.tables("material");
   if (tables.empty())
-    root.fail("no [[material]] given; at least one is required, e.g. [[material]] with name = \"steel\", "
-              "E = 210000, nu = 0.3");
+    root.fail(
+        "no [[material]] given; at least one is required, e.g. [[material]] with name = \"steel\", "
+        "E = 210000, nu = 0.3");
   for (const Table& t : tables) {
     MaterialSpec m = read_material(t, c);
     for (const MaterialSpec& other : c.materials) {
@@ -333,8 +383,9 @@ void read_materials(const Table& root, CaseConfig& c) {
         t.get("name")->fail(fmt::format("duplicate material name {:?}: already used by {} (line {})", m.name,
                                         other.where.key, other.where.line));
       if (other.region == m.region)
-        t.fail(fmt::format("region {:?} already has material {:?} ({}, line {}); each region takes one material",
-                           m.region, other.name, other.where.key, other.where.line));
+        t.fail(
+            fmt::format("region {:?} already has material {:?} ({}, line {}); each region takes one material",
+                        m.region, other.name, other.where.key, other.where.line));
     }
     c.materials.push_back(std::move(m));
   }
@@ -347,9 +398,11 @@ DirichletSpec read_dirichlet(const Table& t, int dim) {
   std::vector<std::pair<std::string, std::string>> hints;
   const std::vector<std::string> comps(kDisplacement, kDisplacement + dim);
   for (int k = 0; k < 3; ++k) {
-    if (k < dim) allowed.emplace_back(kDisplacement[k]);
-    else hints.emplace_back(kDisplacement[k], fmt::format("the displacement has the components {} {}",
-                                                          fmt::join(comps, ", "), for_dim(dim)));
+    if (k < dim)
+      allowed.emplace_back(kDisplacement[k]);
+    else
+      hints.emplace_back(kDisplacement[k], fmt::format("the displacement has the components {} {}",
+                                                       fmt::join(comps, ", "), for_dim(dim)));
   }
   t.check_keys(allowed, hints);
   DirichletSpec d;
@@ -365,9 +418,10 @@ DirichletSpec read_dirichlet(const Table& t, int dim) {
         v->fail(fmt::format("goes with gradient = [[...]]; without a gradient give constant components ({})",
                             fmt::join(comps, ", ")));
     if (given.empty())
-      t.fail(fmt::format("prescribes nothing: give constant components ({}) or gradient = [[...]] (with optional "
-                         "offset and components)",
-                         fmt::join(comps, ", ")));
+      t.fail(fmt::format(
+          "prescribes nothing: give constant components ({}) or gradient = [[...]] (with optional "
+          "offset and components)",
+          fmt::join(comps, ", ")));
     for (int k : given) {
       d.constrained[static_cast<std::size_t>(k)] = true;
       d.value[k] = t.get(kDisplacement[k])->number();
@@ -376,9 +430,11 @@ DirichletSpec read_dirichlet(const Table& t, int dim) {
   }
   if (!given.empty())
     t.get(kDisplacement[given.front()])
-        ->fail("cannot be combined with gradient in one [[dirichlet]]; give either constants (ux, uy, uz) or "
-               "gradient (with offset and components)");
-  const std::string shape = fmt::format("(a {} x {} matrix {}, row c = the gradient of u_c)", dim, dim, for_dim(dim));
+        ->fail(
+            "cannot be combined with gradient in one [[dirichlet]]; give either constants (ux, uy, uz) or "
+            "gradient (with offset and components)");
+  const std::string shape =
+      fmt::format("(a {} x {} matrix {}, row c = the gradient of u_c)", dim, dim, for_dim(dim));
   d.gradient = gradient->matrix(dim, shape);
   if (auto v = t.get("offset")) d.value = v->vector(dim, for_dim(dim));
   if (auto v = t.get("components")) {
@@ -389,7 +445,8 @@ DirichletSpec read_dirichlet(const Table& t, int dim) {
       const std::string a = item.string();
       const auto it = std::find(axes.begin(), axes.end(), a);
       if (it == axes.end())
-        item.fail(fmt::format("expected one of \"{}\" {}, got {:?}", fmt::join(axes, "\", \""), for_dim(dim), a));
+        item.fail(
+            fmt::format("expected one of \"{}\" {}, got {:?}", fmt::join(axes, "\", \""), for_dim(dim), a));
       const auto k = static_cast<std::size_t>(it - axes.begin());
       if (d.constrained[k]) item.fail(fmt::format("component {:?} is listed twice", a));
       d.constrained[k] = true;
@@ -428,13 +485,15 @@ void read_loading(const Table& root, CaseConfig& c) {
   const auto increments = t->get("increments");
   const auto factors = t->get("factors");
   if (increments && factors)
-    factors->fail(fmt::format("cannot be combined with loading.increments (line {}); give either increments = N "
-                              "(factors 1/N, 2/N, ..., 1) or an explicit list factors = [...]",
-                              increments->where().line));
+    factors->fail(
+        fmt::format("cannot be combined with loading.increments (line {}); give either increments = N "
+                    "(factors 1/N, 2/N, ..., 1) or an explicit list factors = [...]",
+                    increments->where().line));
   if (increments) {
     const int n = increments->integer(1, 1000000);
     c.loading.factors.resize(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) c.loading.factors[static_cast<std::size_t>(i)] = static_cast<double>(i + 1) / n;
+    for (int i = 0; i < n; ++i)
+      c.loading.factors[static_cast<std::size_t>(i)] = static_cast<double>(i + 1) / n;
   }
   if (factors) {
     const std::vector<Value> items = factors->elements();
@@ -453,14 +512,16 @@ void read_solver(const Table& root, CaseConfig& c) {
     c.solver.petsc_options = v->string();
     const auto first = c.solver.petsc_options.find_first_not_of(" \t");
     if (first != std::string::npos && c.solver.petsc_options[first] != '-')
-      v->fail(fmt::format("must be PETSc command-line options starting with '-', e.g. \"-ksp_type cg -pc_type "
-                          "gamg\"; got {:?}",
-                          c.solver.petsc_options));
+      v->fail(
+          fmt::format("must be PETSc command-line options starting with '-', e.g. \"-ksp_type cg -pc_type "
+                      "gamg\"; got {:?}",
+                      c.solver.petsc_options));
   }
   if (auto v = t->get("rtol")) {
     c.solver.rtol = v->number();
     if (!(c.solver.rtol > 0 && c.solver.rtol < 1))
-      v->fail(fmt::format("the relative residual tolerance must lie strictly between 0 and 1, got {}", c.solver.rtol));
+      v->fail(fmt::format("the relative residual tolerance must lie strictly between 0 and 1, got {}",
+                          c.solver.rtol));
   }
   if (auto v = t->get("max_iterations")) c.solver.max_iterations = v->integer(1, kMaxInt);
 }
@@ -475,8 +536,9 @@ void read_output(const Table& root, CaseConfig& c) {
   if (auto v = t->get("basename")) {
     c.output.basename = v->name();
     if (c.output.basename.find_first_of("/\\") != std::string::npos)
-      v->fail(fmt::format("must be a plain file-name stem without '/', got {:?}; put folders in output.directory",
-                          c.output.basename));
+      v->fail(
+          fmt::format("must be a plain file-name stem without '/', got {:?}; put folders in output.directory",
+                      c.output.basename));
   }
   if (auto v = t->get("vtu")) c.output.vtu = v->boolean();
   if (auto v = t->get("every")) c.output.every = v->integer(1, kMaxInt);
@@ -497,15 +559,18 @@ CaseConfig parse_case_string(std::string_view toml_text, const std::string& pret
     detail::fail(at, fmt::format("TOML syntax error: {}", e.description()));
   }
   const Table root(pretend_path, doc, "");
-  root.check_keys({"case", "mesh", "region", "model", "material", "dirichlet", "traction", "loading", "solver",
-                   "output"});
+  root.check_keys({"case", "mesh", "region", "model", "material", "dirichlet", "traction", "loading",
+                   "solver", "output", "nonlocal", "alpha"});
   CaseConfig c;
   c.path = pretend_path;
   read_case(root, c);
   read_mesh(root, c);
   read_regions(root, c);
   read_model(root, c);
+  c.nonlocal.enabled = root.has("nonlocal");  // makes an isotropic nu optional
   read_materials(root, c);
+  detail::read_nonlocal(root, c);
+  detail::read_alpha(root, c);
   read_boundary(root, c);
   read_loading(root, c);
   read_solver(root, c);
@@ -520,7 +585,8 @@ CaseConfig parse_case_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     const int err = errno;
-    throw InputError(fmt::format("cannot open case file '{}' ({})", path, std::generic_category().message(err)));
+    throw InputError(
+        fmt::format("cannot open case file '{}' ({})", path, std::generic_category().message(err)));
   }
   std::ostringstream text;
   text << in.rdbuf();

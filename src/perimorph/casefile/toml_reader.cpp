@@ -23,7 +23,9 @@ std::string abridge(std::string text) {
   return text;
 }
 
-std::string index_path(std::string_view path, std::size_t i) { return fmt::format("{}[{}]", path, i + 1); }
+std::string index_path(std::string_view path, std::size_t i) {
+  return fmt::format("{}[{}]", path, i + 1);
+}
 
 }  // namespace
 
@@ -49,13 +51,20 @@ SourceLocation locate(const std::string& file, const toml::node& node, std::stri
 
 std::string show(const toml::node& node) {
   switch (node.type()) {
-    case toml::node_type::string: return fmt::format("a string {:?}", abridge(node.as_string()->get()));
-    case toml::node_type::integer: return "an integer " + render(node);
-    case toml::node_type::floating_point: return "a floating-point number " + render(node);
-    case toml::node_type::boolean: return "a boolean " + render(node);
-    case toml::node_type::array: return "an array " + render(node);
-    case toml::node_type::table: return "a table " + render(node);
-    default: return "a date/time " + render(node);
+    case toml::node_type::string:
+      return fmt::format("a string {:?}", abridge(node.as_string()->get()));
+    case toml::node_type::integer:
+      return "an integer " + render(node);
+    case toml::node_type::floating_point:
+      return "a floating-point number " + render(node);
+    case toml::node_type::boolean:
+      return "a boolean " + render(node);
+    case toml::node_type::array:
+      return "an array " + render(node);
+    case toml::node_type::table:
+      return "a table " + render(node);
+    default:
+      return "a date/time " + render(node);
   }
 }
 
@@ -77,7 +86,8 @@ int Value::integer(int lo, int hi) const {
   if (const auto* f = node_->as_floating_point()) {
     const double v = f->get();
     if (std::isfinite(v) && v == std::floor(v) && std::abs(v) < 1e15)
-      fail(fmt::format("expected an integer, got the floating-point number {}; write {:.0f}", render(*node_), v));
+      fail(fmt::format("expected an integer, got the floating-point number {}; write {:.0f}", render(*node_),
+                       v));
     fail(fmt::format("expected an integer, got {}", show(*node_)));
   }
   const auto* i = node_->as_integer();
@@ -126,7 +136,8 @@ std::vector<Value> Value::elements() const {
 }
 
 Vec3 Value::vector(int n, std::string_view reason) const {
-  if (!node_->is_array()) fail(fmt::format("expected an array of {} numbers {}, got {}", n, reason, show(*node_)));
+  if (!node_->is_array())
+    fail(fmt::format("expected an array of {} numbers {}, got {}", n, reason, show(*node_)));
   const std::vector<Value> items = elements();
   if (items.size() != static_cast<std::size_t>(n))
     fail(fmt::format("needs {} numbers {}, got {}: {}", n, reason, items.size(), render(*node_)));
@@ -137,11 +148,12 @@ Vec3 Value::vector(int n, std::string_view reason) const {
 
 Mat3 Value::matrix(int n, std::string_view reason) const {
   if (!node_->is_array())
-    fail(fmt::format("expected {} rows of {} numbers {}, e.g. [[1, 0], [0, 1]] for 2 x 2; got {}", n, n, reason,
-                     show(*node_)));
+    fail(fmt::format("expected {} rows of {} numbers {}, e.g. [[1, 0], [0, 1]] for 2 x 2; got {}", n, n,
+                     reason, show(*node_)));
   const std::vector<Value> rows = elements();
   if (rows.size() != static_cast<std::size_t>(n))
-    fail(fmt::format("needs {} rows of {} numbers {}, got {} rows: {}", n, n, reason, rows.size(), render(*node_)));
+    fail(fmt::format("needs {} rows of {} numbers {}, got {} rows: {}", n, n, reason, rows.size(),
+                     render(*node_)));
   Mat3 m = Mat3::Zero();
   for (int r = 0; r < n; ++r) m.row(r) = rows[static_cast<std::size_t>(r)].vector(n, reason).transpose();
   return m;
@@ -179,16 +191,18 @@ std::vector<Table> Table::tables(std::string_view key) const {
   if (!v) return {};
   const std::string& path = v->path();
   if (v->node().is_table())
-    v->fail(fmt::format("expected an array of tables, got a single table; write [[{}]] (double brackets) for "
-                        "each entry",
-                        path));
+    v->fail(
+        fmt::format("expected an array of tables, got a single table; write [[{}]] (double brackets) for "
+                    "each entry",
+                    path));
   const toml::array* a = v->node().as_array();
   if (!a) v->fail(fmt::format("expected an array of tables [[{}]], got {}", path, show(v->node())));
   std::vector<Table> out;
   for (std::size_t i = 0; i < a->size(); ++i) {
     const toml::table* t = (*a)[i].as_table();
     const std::string item = index_path(path, i);
-    if (!t) detail::fail(locate(*file_, (*a)[i], item), fmt::format("expected a table, got {}", show((*a)[i])));
+    if (!t)
+      detail::fail(locate(*file_, (*a)[i], item), fmt::format("expected a table, got {}", show((*a)[i])));
     out.emplace_back(*file_, *t, item);
   }
   return out;
@@ -201,7 +215,9 @@ void Table::check_keys(const std::vector<std::string>& allowed,
   for (auto&& [k, node] : *table_) {
     (void)node;
     if (std::find(allowed.begin(), allowed.end(), k.str()) != allowed.end()) continue;
-    const auto pos = [](const toml::key& x) { return std::tuple(x.source().begin.line, x.source().begin.column); };
+    const auto pos = [](const toml::key& x) {
+      return std::tuple(x.source().begin.line, x.source().begin.column);
+    };
     if (!first || pos(k) < pos(*first)) first = &k;
   }
   if (!first) return;

@@ -36,7 +36,7 @@ std::string show(const toml::node& node);
 /// One value of the case file: its node and its dotted path. Refers to the
 /// file name and the parsed document, which must outlive it.
 class Value {
-public:
+ public:
   Value(const std::string& file, const toml::node& node, std::string path)
       : file_(&file), node_(&node), path_(std::move(path)) {}
 
@@ -61,7 +61,7 @@ public:
   /// An array of n arrays of n numbers (n <= 3), row by row; the rest is 0.
   Mat3 matrix(int n, std::string_view reason) const;
 
-private:
+ private:
   const toml::array& array() const;
 
   const std::string* file_;
@@ -72,7 +72,7 @@ private:
 /// A table of the case file: the root (path ""), a section ("mesh") or one
 /// entry of an array of tables ("material[2]").
 class Table {
-public:
+ public:
   Table(const std::string& file, const toml::table& table, std::string path)
       : file_(&file), table_(&table), path_(std::move(path)) {}
 
@@ -99,7 +99,7 @@ public:
   void check_keys(const std::vector<std::string>& allowed,
                   const std::vector<std::pair<std::string, std::string>>& hints = {}) const;
 
-private:
+ private:
   const std::string* file_;
   const toml::table* table_;
   std::string path_;

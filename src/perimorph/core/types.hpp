@@ -17,4 +17,7 @@ using Mat3 = Eigen::Matrix3d;
 /// Voigt order for 3D: xx, yy, zz, yz, xz, xy (engineering shear strains).
 using Voigt6 = Eigen::Matrix<double, 6, 6>;
 
+/// 2D models: plane strain or plane stress (ignored in 1D and 3D).
+enum class PlaneMode { strain, stress };
+
 }  // namespace perimorph

@@ -31,6 +31,13 @@ DofMap::DofMap(const mesh::Mesh& mesh, int block_size, std::span<const Continuit
   offsets_.push_back(0);
   cell_nodes_.reserve(mesh.connectivity().size());
   for (Index c = 0; c < ncells; ++c) {
+    if (continuity_[static_cast<std::size_t>(c)] == Continuity::discontinuous_constant) {
+      cell_nodes_.push_back(static_cast<Index>(node_coords_.size()));
+      node_coords_.push_back(mesh.cell_centroid(c));
+      mesh_node_.push_back(-1);
+      offsets_.push_back(static_cast<Index>(cell_nodes_.size()));
+      continue;
+    }
     for (Index n : mesh.cell(c)) {
       if (continuity_[static_cast<std::size_t>(c)] == Continuity::continuous) {
         cell_nodes_.push_back(cg_node[static_cast<std::size_t>(n)]);
@@ -51,8 +58,19 @@ std::vector<Index> DofMap::dof_nodes_of_mesh_nodes(std::span<const Index> mesh_n
   for (Index m : mesh_nodes)
     if (m <= max_node) wanted[static_cast<std::size_t>(m)] = 1;
   std::vector<Index> out;
-  for (Index n = 0; n < num_nodes(); ++n)
-    if (wanted[static_cast<std::size_t>(mesh_node_[static_cast<std::size_t>(n)])]) out.push_back(n);
+  for (Index n = 0; n < num_nodes(); ++n) {
+    const Index m = mesh_node_[static_cast<std::size_t>(n)];
+    if (m >= 0 && wanted[static_cast<std::size_t>(m)]) out.push_back(n);
+  }
+  return out;
+}
+
+std::vector<Index> DofMap::dof_nodes_of_cells(std::span<const Index> cells) const {
+  std::vector<Index> out;
+  for (Index c : cells)
+    for (Index n : cell_nodes(c)) out.push_back(n);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 

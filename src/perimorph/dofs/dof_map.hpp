@@ -21,7 +21,11 @@ class Mesh;
 
 namespace perimorph::dofs {
 
-enum class Continuity : std::uint8_t { continuous = 0, discontinuous = 1 };
+/// continuous: shares the mesh's vertex nodes (CG); discontinuous: private
+/// copies of its vertices (DG, degree 1); discontinuous_constant: one private
+/// node at the centroid with a constant shape function (DG degree 0, the
+/// meshfree discretization, THEORY §4).
+enum class Continuity : std::uint8_t { continuous = 0, discontinuous = 1, discontinuous_constant = 2 };
 
 class DofMap {
 public:
@@ -43,10 +47,13 @@ public:
   Continuity continuity(Index c) const { return continuity_[static_cast<std::size_t>(c)]; }
   const Vec3& node_coordinate(Index n) const { return node_coords_[static_cast<std::size_t>(n)]; }
   const std::vector<Vec3>& node_coordinates() const { return node_coords_; }
-  /// Mesh node this dof node copies (CG: itself; DG: the vertex it duplicates).
+  /// Mesh node this dof node copies (CG: itself; DG: the vertex it
+  /// duplicates; DG degree 0: -1, the node is a cell centroid).
   Index mesh_node(Index n) const { return mesh_node_[static_cast<std::size_t>(n)]; }
-  /// Dof nodes that copy mesh node m (one for CG, one per DG cell touching it, ...).
+  /// Dof nodes that copy the given mesh nodes (one for CG, one per DG cell touching it, ...).
   std::vector<Index> dof_nodes_of_mesh_nodes(std::span<const Index> mesh_nodes) const;
+  /// Every dof node of the given cells, sorted and unique.
+  std::vector<Index> dof_nodes_of_cells(std::span<const Index> cells) const;
 
 private:
   int block_size_;

@@ -13,6 +13,10 @@ namespace {
 
 std::vector<Index> dof_nodes_of_set(const Model& model, const std::string& set, const casefile::SourceLocation& where) {
   try {
+    // A cell set names every dof node of its cells (the only way to reach the
+    // centroid nodes of DG degree 0 cells); other sets name mesh nodes.
+    if (auto it = model.mesh.cell_sets.find(set); it != model.mesh.cell_sets.end())
+      return model.dofmap.dof_nodes_of_cells(it->second);
     return model.dofmap.dof_nodes_of_mesh_nodes(model.mesh.nodes_of_set(set));
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", where.describe(), e.what()));

@@ -16,10 +16,6 @@ bool inside(const Vec3& x, const Vec3& lo, const Vec3& hi, int dim) {
   return true;
 }
 
-fem::PlaneMode plane_mode(casefile::PlaneMode p) {
-  return p == casefile::PlaneMode::stress ? fem::PlaneMode::stress : fem::PlaneMode::strain;
-}
-
 }  // namespace
 
 mesh::Mesh build_mesh(const casefile::CaseConfig& config) {
@@ -66,26 +62,56 @@ Voigt6 material_stiffness(const casefile::MaterialSpec& m) {
 Model build_model(const casefile::CaseConfig& config) {
   mesh::Mesh m = build_mesh(config);
   const int dim = m.dim();
-  dofs::DofMap dofmap(m, dim);
+  const double scale = dim == 3 ? 1.0 : config.model.thickness;
   auto rule = fem::gauss_legendre(dim, config.model.local_quadrature);
   fem::ConstitutiveField field(dim, m.num_cells(), static_cast<int>(rule.size()));
-  std::vector<int> assigned(static_cast<std::size_t>(m.num_cells()), -1);
-  for (const auto& mat : config.materials) {
-    const int id = field.add_tensor(fem::reduce_stiffness(material_stiffness(mat), dim, plane_mode(config.model.plane)));
-    const auto& cells = m.cell_sets.at(mat.region);
-    for (Index c : cells) {
-      field.set_cell(c, id);
-      assigned[static_cast<std::size_t>(c)] = id;
+  std::vector<dofs::Continuity> continuity;
+
+  std::optional<NonlocalModel> nl;
+  if (config.nonlocal.enabled) {
+    const casefile::MaterialSpec mat = calibration_material(config);
+    nl.emplace();
+    nl->kernel = make_kernel(config.nonlocal);
+    nl->calibration = peridynamics::calibrate_isotropic(nl->kernel, dim, config.model.plane, mat.E);
+    nl->kernel.scale = nl->calibration.scale;
+    nl->alpha = make_alpha_field(config);
+    nl->points = bonds::make_nonlocal_points(m, config.nonlocal.quadrature, scale, nl->alpha);
+    const auto& amax = nl->points.cell_alpha_max;
+    nl->graph = bonds::find_cell_neighbors(m, nl->kernel.horizon, [&](Index e, Index f) {
+      return amax[static_cast<std::size_t>(e)] > 0.0 || amax[static_cast<std::size_t>(f)] > 0.0;
+    });
+    const Eigen::MatrixXd C0 = fem::reduce_stiffness(material_stiffness(mat), dim, config.model.plane);
+    nl->morph = assembly::morph_stiffness(
+        m, rule, nl->points, nl->graph, nl->kernel, nl->alpha, C0,
+        config.nonlocal.coupling == casefile::Coupling::partition ? assembly::CouplingRule::partition
+                                                                   : assembly::CouplingRule::morphing,
+        field);
+    const auto dg = config.nonlocal.discretization;
+    if (dg != casefile::Discretization::continuous) {
+      const auto flag = dg == casefile::Discretization::discontinuous ? dofs::Continuity::discontinuous
+                                                                       : dofs::Continuity::discontinuous_constant;
+      continuity.assign(static_cast<std::size_t>(m.num_cells()), dofs::Continuity::continuous);
+      for (Index c = 0; c < m.num_cells(); ++c)
+        if (nl->morph.purely_nonlocal[static_cast<std::size_t>(c)]) continuity[static_cast<std::size_t>(c)] = flag;
     }
+  } else {
+    std::vector<int> assigned(static_cast<std::size_t>(m.num_cells()), -1);
+    for (const auto& mat : config.materials) {
+      const int id = field.add_tensor(fem::reduce_stiffness(material_stiffness(mat), dim, config.model.plane));
+      for (Index c : m.cell_sets.at(mat.region)) {
+        field.set_cell(c, id);
+        assigned[static_cast<std::size_t>(c)] = id;
+      }
+    }
+    for (Index c = 0; c < m.num_cells(); ++c)
+      if (assigned[static_cast<std::size_t>(c)] < 0)
+        throw InputError(fmt::format("{}: cell {} (centroid {:.4g}, {:.4g}, {:.4g}) has no material; give a material "
+                                     "with region = \"all\" or cover every region",
+                                     config.path, c, m.cell_centroid(c).x(), m.cell_centroid(c).y(),
+                                     m.cell_centroid(c).z()));
   }
-  for (Index c = 0; c < m.num_cells(); ++c)
-    if (assigned[static_cast<std::size_t>(c)] < 0)
-      throw InputError(fmt::format("{}: cell {} (centroid {:.4g}, {:.4g}, {:.4g}) has no material; give a material "
-                                   "with region = \"all\" or cover every region",
-                                   config.path, c, m.cell_centroid(c).x(), m.cell_centroid(c).y(),
-                                   m.cell_centroid(c).z()));
-  const double scale = dim == 3 ? 1.0 : config.model.thickness;
-  return Model{config, std::move(m), std::move(dofmap), std::move(rule), std::move(field), scale};
+  dofs::DofMap dofmap(m, dim, continuity);
+  return Model{config, std::move(m), std::move(dofmap), std::move(rule), std::move(field), scale, std::move(nl)};
 }
 
 }  // namespace perimorph::driver

@@ -4,11 +4,14 @@
 // quadrature point. This is where typed case data meets the pipeline stages.
 
 #include "perimorph/assembly/local_assembly.hpp"
+#include "perimorph/driver/nonlocal_setup.hpp"
 #include "perimorph/casefile/case_config.hpp"
 #include "perimorph/dofs/dof_map.hpp"
 #include "perimorph/fem/constitutive_field.hpp"
 #include "perimorph/fem/material.hpp"
 #include "perimorph/mesh/mesh.hpp"
+
+#include <optional>
 
 namespace perimorph::driver {
 
@@ -19,9 +22,15 @@ struct Model {
   std::vector<fem::QuadraturePoint> rule;
   fem::ConstitutiveField stiffness;
   double scale = 1.0;  ///< thickness (2D) or cross-section (1D)
+  /// The non-local part, when the case has a [nonlocal] section.
+  std::optional<NonlocalModel> nonlocal;
 
   int dim() const { return mesh.dim(); }
   assembly::LocalSpace local_space() const { return {mesh, dofmap, rule, scale}; }
+  /// True if cell c carries local stiffness (not purely non-local).
+  bool has_local_stiffness(Index c) const {
+    return !nonlocal || !nonlocal->morph.purely_nonlocal[static_cast<std::size_t>(c)];
+  }
 };
 
 /// The mesh of a case: box, regions (cell sets and region ids), cuts.

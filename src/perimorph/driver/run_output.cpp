@@ -66,13 +66,33 @@ void RunOutput::write_increment_vtu(const Model& model, int increment, double lo
   grid.points = dm.node_coordinates();
   grid.nodes_per_cell = model.mesh.nodes_per_cell();
   grid.cell_type = vtk_cell(dim_);
-  for (Index c = 0; c < dm.num_cells(); ++c)
-    for (Index n : dm.cell_nodes(c)) grid.connectivity.push_back(n);
+  // Points are the dof nodes; a DG degree 0 cell is drawn with its own corner
+  // points, all carrying the displacement of its centroid node.
+  std::vector<Index> point_dof_node(static_cast<std::size_t>(dm.num_nodes()));
+  for (Index n = 0; n < dm.num_nodes(); ++n) point_dof_node[static_cast<std::size_t>(n)] = n;
+  for (Index c = 0; c < dm.num_cells(); ++c) {
+    const auto nodes = dm.cell_nodes(c);
+    if (static_cast<int>(nodes.size()) == grid.nodes_per_cell) {
+      grid.connectivity.insert(grid.connectivity.end(), nodes.begin(), nodes.end());
+      continue;
+    }
+    for (Index corner : model.mesh.cell(c)) {
+      grid.connectivity.push_back(static_cast<Index>(grid.points.size()));
+      grid.points.push_back(model.mesh.node(corner));
+      point_dof_node.push_back(nodes[0]);
+    }
+  }
 
-  io::Field disp{"displacement", 3, std::vector<double>(static_cast<std::size_t>(dm.num_nodes()) * 3, 0.0)};
-  for (Index n = 0; n < dm.num_nodes(); ++n)
-    for (int d = 0; d < dim_; ++d) disp.values[static_cast<std::size_t>(n * 3 + d)] = u[static_cast<std::size_t>(n * dim_ + d)];
+  io::Field disp{"displacement", 3, std::vector<double>(grid.points.size() * 3, 0.0)};
+  for (std::size_t p = 0; p < grid.points.size(); ++p)
+    for (int d = 0; d < dim_; ++d)
+      disp.values[p * 3 + static_cast<std::size_t>(d)] = u[static_cast<std::size_t>(point_dof_node[p] * dim_ + d)];
   grid.point_data.push_back(std::move(disp));
+  if (model.nonlocal) {
+    io::Field alpha{"alpha", 1, {}};
+    for (const Vec3& x : grid.points) alpha.values.push_back(model.nonlocal->alpha(x));
+    grid.point_data.push_back(std::move(alpha));
+  }
 
   const auto fields = assembly::cell_strain_stress(model.local_space(), model.stiffness, u);
   const int nv = fem::voigt_size(dim_);
@@ -86,6 +106,25 @@ void RunOutput::write_increment_vtu(const Model& model, int increment, double lo
     energy.values.push_back(fields.energy_density[static_cast<std::size_t>(c)]);
   }
   grid.cell_data = {std::move(strain), std::move(stress), std::move(region), std::move(energy)};
+  if (model.nonlocal) {
+    // α at the local quadrature points (cell mean) and the element kind:
+    // 0 local/morphing (CG), 1 purely non-local CG, 2 DG, 3 DG degree 0.
+    const auto& nl = *model.nonlocal;
+    const std::size_t nq = model.rule.size();
+    io::Field alpha_cell{"alpha_mean", 1, {}}, kind{"element_kind", 1, {}};
+    for (Index c = 0; c < dm.num_cells(); ++c) {
+      double a = 0.0;
+      for (std::size_t q = 0; q < nq; ++q) a += nl.morph.alpha[static_cast<std::size_t>(c) * nq + q];
+      alpha_cell.values.push_back(a / static_cast<double>(nq));
+      const auto k = dm.continuity(c);
+      kind.values.push_back(k == dofs::Continuity::discontinuous            ? 2.0
+                            : k == dofs::Continuity::discontinuous_constant ? 3.0
+                            : nl.morph.purely_nonlocal[static_cast<std::size_t>(c)] ? 1.0
+                                                                                     : 0.0);
+    }
+    grid.cell_data.push_back(std::move(alpha_cell));
+    grid.cell_data.push_back(std::move(kind));
+  }
 
   const std::string name = fmt::format("{}_{:04d}.vtu", basename_, increment);
   io::write_vtu((std::filesystem::path(directory_) / name).string(), grid);

@@ -1,9 +1,9 @@
 #include "perimorph/driver/static_run.hpp"
 
-#include "perimorph/assembly/sparsity.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/driver/boundary_conditions.hpp"
 #include "perimorph/driver/run_output.hpp"
+#include "perimorph/driver/stiffness.hpp"
 #include "perimorph/io/progress.hpp"
 #include "perimorph/la/matrix.hpp"
 #include "perimorph/la/petsc_session.hpp"
@@ -50,9 +50,8 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
   la::add_options(config.solver.petsc_options);
 
   // K (kept unconstrained for reactions and energies) and the constrained copy A.
-  la::Matrix K(assembly::build_sparsity(model.dofmap));
-  assembly::assemble_elasticity(model.local_space(), model.stiffness, K);
-  K.finalize();
+  AssembledStiffness assembled = assemble_stiffness(model);
+  la::Matrix& K = assembled.K;
   const DirichletData bc = build_dirichlet(model);
   const std::vector<double> F = build_external_force(model);
   const Index n = model.dofmap.num_dofs();

@@ -11,7 +11,7 @@
 
 namespace perimorph::fem {
 
-enum class PlaneMode { strain, stress };
+using PlaneMode = perimorph::PlaneMode;
 
 struct IsotropicElasticity {
   double E = 0.0;

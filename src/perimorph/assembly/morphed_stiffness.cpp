@@ -1,0 +1,118 @@
+#include "perimorph/assembly/morphed_stiffness.hpp"
+
+#include "perimorph/bonds/cell_graph.hpp"
+#include "perimorph/bonds/nonlocal_points.hpp"
+#include "perimorph/fem/constitutive_field.hpp"
+#include "perimorph/fem/material.hpp"
+#include "perimorph/fem/shape.hpp"
+#include "perimorph/mesh/mesh.hpp"
+#include "perimorph/peridynamics/pair_kernel.hpp"
+
+#include <array>
+
+namespace perimorph::assembly {
+
+namespace {
+
+/// Voigt index pairs (i, j) in the model dimension: xx | xx yy xy | xx yy zz yz xz xy.
+std::vector<std::array<int, 2>> voigt_pairs(int dim) {
+  if (dim == 1) return {{0, 0}};
+  if (dim == 2) return {{0, 0}, {1, 1}, {0, 1}};
+  return {{0, 0}, {1, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}};
+}
+
+Vec3 physical_point(const mesh::Mesh& mesh, Index c, const Vec3& xi) {
+  Vec3 x = Vec3::Zero();
+  const auto nodes = mesh.cell(c);
+  for (int a = 0; a < mesh.nodes_per_cell(); ++a) {
+    double N = 1.0;
+    for (int d = 0; d < mesh.dim(); ++d) N *= 0.5 * (1.0 + mesh::reference_node_coordinate(a, d) * xi[d]);
+    x += N * mesh.node(nodes[static_cast<std::size_t>(a)]);
+  }
+  return x;
+}
+
+}  // namespace
+
+Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const Index> cells,
+                                 const bonds::NonlocalPoints& points, const peridynamics::Micromodulus& kernel,
+                                 const mesh::Mesh& mesh) {
+  const int dim = points.dim;
+  const auto pairs = voigt_pairs(dim);
+  const int nv = static_cast<int>(pairs.size());
+  Eigen::MatrixXd I = Eigen::MatrixXd::Zero(nv, nv);
+  const double delta2 = kernel.horizon * kernel.horizon;
+  for (Index f : cells)
+    for (int h = 0; h < points.per_cell; ++h) {
+      const std::size_t k = points.index(f, h);
+      const double da = alpha_g - points.alpha[k];
+      if (da == 0.0) continue;
+      const Vec3 xi = points.x[k] - xg;
+      const double r2 = xi.squaredNorm();
+      if (r2 >= delta2 || r2 == 0.0) continue;
+      if (!mesh.cuts.empty() && peridynamics::bond_cut(xg, points.x[k], mesh.cuts)) continue;
+      const double s = points.weight[k] * kernel(std::sqrt(r2)) * 0.5 * da / (2.0 * r2);
+      for (int a = 0; a < nv; ++a)
+        for (int b = a; b < nv; ++b) {
+          const auto [i, j] = pairs[static_cast<std::size_t>(a)];
+          const auto [l, m] = pairs[static_cast<std::size_t>(b)];
+          I(a, b) += s * xi[i] * xi[j] * xi[l] * xi[m];
+        }
+    }
+  I.triangularView<Eigen::StrictlyLower>() = I.transpose().triangularView<Eigen::StrictlyLower>();
+  return I;
+}
+
+MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::QuadraturePoint> rule,
+                                 const bonds::NonlocalPoints& points, const bonds::CellGraph& graph,
+                                 const peridynamics::Micromodulus& kernel, const alpha::AlphaField& alpha,
+                                 const Eigen::MatrixXd& C0, CouplingRule rule_kind, fem::ConstitutiveField& field) {
+  const Index ncells = mesh.num_cells();
+  const int nq = static_cast<int>(rule.size());
+  const int nv = fem::voigt_size(mesh.dim());
+  const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(nv, nv);
+  const int id_local = field.add_tensor(C0);
+  const int id_zero = field.add_tensor(zero);
+
+  MorphedStiffness out;
+  out.alpha.resize(static_cast<std::size_t>(ncells) * static_cast<std::size_t>(nq));
+  out.purely_nonlocal.assign(static_cast<std::size_t>(ncells), 0);
+  std::vector<std::vector<Eigen::MatrixXd>> per_point(static_cast<std::size_t>(ncells));
+
+#pragma omp parallel for schedule(dynamic, 16)
+  for (Index c = 0; c < ncells; ++c) {
+    // Range of α over the horizon (neighbour cells' points) and the cell's local points.
+    double amin = 1.0, amax = 0.0;
+    for (Index f : graph.row(c)) {
+      amin = std::min(amin, points.cell_alpha_min[static_cast<std::size_t>(f)]);
+      amax = std::max(amax, points.cell_alpha_max[static_cast<std::size_t>(f)]);
+    }
+    std::vector<Eigen::MatrixXd> C(static_cast<std::size_t>(nq));
+    bool uniform = true, all_zero = true;
+    for (int q = 0; q < nq; ++q) {
+      const Vec3 x = physical_point(mesh, c, rule[static_cast<std::size_t>(q)].xi);
+      const double a = alpha(x);
+      out.alpha[static_cast<std::size_t>(c) * static_cast<std::size_t>(nq) + static_cast<std::size_t>(q)] = a;
+      Eigen::MatrixXd Cq = (1.0 - a) * C0;
+      if (rule_kind == CouplingRule::morphing && !(amin == a && amax == a))
+        Cq += horizon_integral(x, a, graph.row(c), points, kernel, mesh);
+      all_zero = all_zero && (Cq.array() == 0.0).all();
+      uniform = uniform && a == 0.0 && (Cq.array() == C0.array()).all();
+      C[static_cast<std::size_t>(q)] = std::move(Cq);
+    }
+    if (all_zero) out.purely_nonlocal[static_cast<std::size_t>(c)] = 1;
+    else if (!uniform) per_point[static_cast<std::size_t>(c)] = std::move(C);
+  }
+  for (Index c = 0; c < ncells; ++c) {
+    auto& C = per_point[static_cast<std::size_t>(c)];
+    if (out.purely_nonlocal[static_cast<std::size_t>(c)]) field.set_cell(c, id_zero);
+    else if (C.empty()) field.set_cell(c, id_local);
+    else {
+      field.set_cell_points(c, C);
+      ++out.morphing_cells;
+    }
+  }
+  return out;
+}
+
+}  // namespace perimorph::assembly

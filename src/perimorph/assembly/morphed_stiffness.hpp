@@ -1,0 +1,59 @@
+#pragma once
+// The morphed local stiffness at the local quadrature points (THEORY §3,
+// eq. 2.28):
+//
+//   C(x) = (1 − α(x)) C₀ + ∫_{H(x)} c(ξ) (α(x) − α(p))/2 · ξ⊗ξ⊗ξ⊗ξ / (2|ξ|²) dp
+//
+// with the horizon integral evaluated on the non-local quadrature points (so
+// C = C₀ exactly where α ≡ 0 on the horizon and C = 0 exactly where α ≡ 1), or
+// the rough "partition" rule C = (1 − α(x)) C₀ (eq. 2.46) for comparison.
+
+#include "perimorph/alpha/alpha_field.hpp"
+#include "perimorph/fem/quadrature.hpp"
+#include "perimorph/peridynamics/micromodulus.hpp"
+
+#include <Eigen/Core>
+
+#include <span>
+#include <vector>
+
+namespace perimorph::mesh {
+class Mesh;
+}
+namespace perimorph::bonds {
+struct NonlocalPoints;
+struct CellGraph;
+}  // namespace perimorph::bonds
+namespace perimorph::fem {
+class ConstitutiveField;
+}
+
+namespace perimorph::assembly {
+
+enum class CouplingRule { morphing, partition };
+
+struct MorphedStiffness {
+  /// α at the local quadrature points (cell c, point q at c·n + q).
+  std::vector<double> alpha;
+  /// 1 where C ≡ 0 at every local point of the cell: a purely non-local cell.
+  std::vector<char> purely_nonlocal;
+  /// Cells whose C varies point by point (the morphing zone).
+  Index morphing_cells = 0;
+};
+
+/// The horizon integral ∫ c(ξ) (α_g − α(p))/2 ξ⊗ξ⊗ξ⊗ξ/(2|ξ|²) dp at x_g
+/// (Voigt, model dimension), summed over the non-local points of the given
+/// cells, bonds crossing a cut excluded. Exposed for tests.
+Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const Index> cells,
+                                 const bonds::NonlocalPoints& points, const peridynamics::Micromodulus& kernel,
+                                 const mesh::Mesh& mesh);
+
+/// Fills `field` (sized for `rule`) with C(x) for every cell, from the
+/// reference stiffness C0 (Voigt, model dimension). `graph` must hold, for each
+/// cell, every cell within the horizon.
+MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::QuadraturePoint> rule,
+                                 const bonds::NonlocalPoints& points, const bonds::CellGraph& graph,
+                                 const peridynamics::Micromodulus& kernel, const alpha::AlphaField& alpha,
+                                 const Eigen::MatrixXd& C0, CouplingRule rule_kind, fem::ConstitutiveField& field);
+
+}  // namespace perimorph::assembly

@@ -1,0 +1,112 @@
+#include "perimorph/assembly/nonlocal_assembly.hpp"
+
+#include "perimorph/bonds/cell_graph.hpp"
+#include "perimorph/bonds/nonlocal_points.hpp"
+#include "perimorph/core/error.hpp"
+#include "perimorph/dofs/dof_map.hpp"
+#include "perimorph/mesh/mesh.hpp"
+#include "perimorph/peridynamics/pair_kernel.hpp"
+
+#include <algorithm>
+#include <vector>
+
+namespace perimorph::assembly {
+
+namespace {
+
+constexpr Index chunk_cells = 16;
+
+struct PairTask {
+  Index e, f;
+};
+
+/// Cells close enough to a cut that their bonds may cross it.
+std::vector<char> cells_near_cuts(const mesh::Mesh& mesh, double horizon) {
+  std::vector<char> near(static_cast<std::size_t>(mesh.num_cells()), 0);
+  if (mesh.cuts.empty()) return near;
+  for (Index c = 0; c < mesh.num_cells(); ++c) {
+    const Vec3 x = mesh.cell_centroid(c);
+    const double reach = horizon + mesh.cell_size(c) * std::sqrt(static_cast<double>(mesh.dim()));
+    for (const auto& cut : mesh.cuts)
+      if (std::abs((x - cut.origin).dot(cut.normal())) < reach) near[static_cast<std::size_t>(c)] = 1;
+  }
+  return near;
+}
+
+template <int D>
+NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K) {
+  const auto& pts = s.points;
+  PERIMORPH_ASSERT(pts.per_cell <= 216, "at most 6 non-local quadrature points per direction");
+  const Index ncells = s.mesh.num_cells();
+  const std::vector<char> near_cut = cells_near_cuts(s.mesh, s.kernel.horizon);
+  const std::vector<double> ones(static_cast<std::size_t>(pts.per_cell), 1.0);
+  auto cell_points = [&](Index c) {
+    peridynamics::CellPoints p;
+    const std::size_t k = pts.index(c, 0);
+    p.x = pts.x.data() + k;
+    p.weight = pts.weight.data() + k;
+    p.alpha = pts.alpha.data() + k;
+    p.count = pts.per_cell;
+    p.nodes = static_cast<int>(s.dofmap.cell_nodes(c).size());
+    p.shape = p.nodes == 1 ? ones.data() : pts.shape.data();
+    return p;
+  };
+  const std::size_t max_block = static_cast<std::size_t>(2 * peridynamics::max_cell_nodes * D) *
+                                static_cast<std::size_t>(2 * peridynamics::max_cell_nodes * D);
+
+  NonlocalStats stats;
+  std::vector<PairTask> tasks;
+  std::vector<double> blocks;
+  std::vector<std::size_t> bonds;
+  std::vector<Index> dofs;
+  for (Index first = 0; first < ncells; first += chunk_cells) {
+    const Index last = std::min(ncells, first + chunk_cells);
+    tasks.clear();
+    for (Index e = first; e < last; ++e) {
+      const double amax_e = pts.cell_alpha_max[static_cast<std::size_t>(e)];
+      for (Index f : s.graph.row(e)) {
+        if (f < e) continue;
+        if (amax_e + pts.cell_alpha_max[static_cast<std::size_t>(f)] <= 0.0) continue;
+        tasks.push_back({e, f});
+      }
+    }
+    blocks.resize(tasks.size() * max_block);
+    bonds.assign(tasks.size(), 0);
+#pragma omp parallel for schedule(dynamic, 4)
+    for (std::size_t t = 0; t < tasks.size(); ++t) {
+      const auto [e, f] = tasks[t];
+      const bool unit = pts.cell_alpha_min[static_cast<std::size_t>(e)] >= 1.0 &&
+                        pts.cell_alpha_min[static_cast<std::size_t>(f)] >= 1.0;
+      const bool cut = near_cut[static_cast<std::size_t>(e)] && near_cut[static_cast<std::size_t>(f)];
+      bonds[t] = peridynamics::pair_stiffness<D>(cell_points(e), cell_points(f), e == f, s.kernel,
+                                                 cut ? std::span<const mesh::Cut>(s.mesh.cuts) : std::span<const mesh::Cut>{},
+                                                 unit, blocks.data() + t * max_block);
+    }
+    for (std::size_t t = 0; t < tasks.size(); ++t) {
+      if (bonds[t] == 0) continue;
+      const auto [e, f] = tasks[t];
+      dofs.clear();
+      for (Index n : s.dofmap.cell_nodes(e))
+        for (int d = 0; d < D; ++d) dofs.push_back(n * D + d);
+      if (f != e)
+        for (Index n : s.dofmap.cell_nodes(f))
+          for (int d = 0; d < D; ++d) dofs.push_back(n * D + d);
+      K.add(dofs, dofs, std::span<const double>(blocks.data() + t * max_block, dofs.size() * dofs.size()));
+      ++stats.cell_pairs;
+      stats.bonds += bonds[t];
+    }
+  }
+  return stats;
+}
+
+}  // namespace
+
+NonlocalStats assemble_nonlocal(const NonlocalSpace& space, MatrixInserter& K) {
+  switch (space.mesh.dim()) {
+    case 1: return assemble_dim<1>(space, K);
+    case 2: return assemble_dim<2>(space, K);
+    default: return assemble_dim<3>(space, K);
+  }
+}
+
+}  // namespace perimorph::assembly

@@ -1,0 +1,43 @@
+#pragma once
+// The loop that applies the pair kernel (peridynamics/pair_kernel.hpp) over
+// every interacting pair of cells (THEORY §4). Pair blocks are computed in
+// parallel (OpenMP) for a chunk of cells and inserted in a fixed order, so the
+// matrix is bit-identical for any thread count.
+
+#include "perimorph/assembly/inserter.hpp"
+#include "perimorph/peridynamics/micromodulus.hpp"
+
+#include <cstddef>
+
+namespace perimorph::mesh {
+class Mesh;
+}
+namespace perimorph::dofs {
+class DofMap;
+}
+namespace perimorph::bonds {
+struct NonlocalPoints;
+struct CellGraph;
+}  // namespace perimorph::bonds
+
+namespace perimorph::assembly {
+
+struct NonlocalSpace {
+  const mesh::Mesh& mesh;
+  const dofs::DofMap& dofmap;
+  const bonds::NonlocalPoints& points;
+  const bonds::CellGraph& graph;
+  const peridynamics::Micromodulus& kernel;
+};
+
+struct NonlocalStats {
+  std::size_t cell_pairs = 0;  ///< pairs with at least one bond
+  std::size_t bonds = 0;       ///< unordered quadrature-point pairs with ᾱ c > 0
+};
+
+/// K += K_nl. Pairs whose cells have α ≡ 0 are skipped; pairs with α ≡ 1 on
+/// both sides skip reading α. Bonds crossing a pre-crack cut of the mesh are
+/// left out.
+NonlocalStats assemble_nonlocal(const NonlocalSpace& space, MatrixInserter& K);
+
+}  // namespace perimorph::assembly

@@ -1,0 +1,119 @@
+#include "perimorph/bonds/cell_graph.hpp"
+
+#include "perimorph/core/error.hpp"
+#include "perimorph/mesh/mesh.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <unordered_map>
+
+namespace perimorph::bonds {
+
+CellGraph CellGraph::diagonal(Index num_cells) {
+  CellGraph g;
+  g.offsets.resize(static_cast<std::size_t>(num_cells) + 1);
+  g.neighbors.resize(static_cast<std::size_t>(num_cells));
+  for (Index c = 0; c <= num_cells; ++c) g.offsets[static_cast<std::size_t>(c)] = c;
+  for (Index c = 0; c < num_cells; ++c) g.neighbors[static_cast<std::size_t>(c)] = c;
+  return g;
+}
+
+CellGraph CellGraph::from_pairs(Index num_cells, std::span<const std::pair<Index, Index>> pairs) {
+  std::vector<std::vector<Index>> rows(static_cast<std::size_t>(num_cells));
+  for (Index c = 0; c < num_cells; ++c) rows[static_cast<std::size_t>(c)].push_back(c);
+  for (auto [e, f] : pairs) {
+    rows[static_cast<std::size_t>(e)].push_back(f);
+    rows[static_cast<std::size_t>(f)].push_back(e);
+  }
+  CellGraph g;
+  g.offsets.push_back(0);
+  for (auto& row : rows) {
+    std::sort(row.begin(), row.end());
+    row.erase(std::unique(row.begin(), row.end()), row.end());
+    g.neighbors.insert(g.neighbors.end(), row.begin(), row.end());
+    g.offsets.push_back(static_cast<Index>(g.neighbors.size()));
+  }
+  return g;
+}
+
+std::size_t CellGraph::num_pairs() const {
+  std::size_t n = 0;
+  for (Index e = 0; e < num_cells(); ++e)
+    for (Index f : row(e)) n += f >= e ? 1 : 0;
+  return n;
+}
+
+CellGraph find_cell_neighbors(const mesh::Mesh& mesh, double horizon, const std::function<bool(Index, Index)>& keep) {
+  const int dim = mesh.dim();
+  const Index ncells = mesh.num_cells();
+  std::vector<Vec3> lo(static_cast<std::size_t>(ncells)), hi(static_cast<std::size_t>(ncells));
+  double extent = 0.0;
+  for (Index c = 0; c < ncells; ++c) {
+    Vec3 l = Vec3::Constant(std::numeric_limits<double>::max()), h = -l;
+    for (Index n : mesh.cell(c)) {
+      l = l.cwiseMin(mesh.node(n));
+      h = h.cwiseMax(mesh.node(n));
+    }
+    lo[static_cast<std::size_t>(c)] = l;
+    hi[static_cast<std::size_t>(c)] = h;
+    extent = std::max(extent, (h - l).head(dim).maxCoeff());
+  }
+  // Bins of size ≥ horizon + extent: interacting cells have centroids in
+  // adjacent bins.
+  const double bin = horizon + extent;
+  const auto [box_lo, box_hi] = mesh.bounding_box();
+  std::array<long, 3> nbins{1, 1, 1};
+  for (int d = 0; d < dim; ++d)
+    nbins[static_cast<std::size_t>(d)] = std::max(1L, static_cast<long>(std::floor((box_hi[d] - box_lo[d]) / bin)) + 1);
+  auto bin_of = [&](const Vec3& x, int d) {
+    return std::clamp(static_cast<long>(std::floor((x[d] - box_lo[d]) / bin)), 0L, nbins[static_cast<std::size_t>(d)] - 1);
+  };
+  std::unordered_map<long, std::vector<Index>> bins;
+  std::vector<std::array<long, 3>> cell_bin(static_cast<std::size_t>(ncells));
+  for (Index c = 0; c < ncells; ++c) {
+    const Vec3 centre = 0.5 * (lo[static_cast<std::size_t>(c)] + hi[static_cast<std::size_t>(c)]);
+    std::array<long, 3> b{0, 0, 0};
+    for (int d = 0; d < dim; ++d) b[static_cast<std::size_t>(d)] = bin_of(centre, d);
+    cell_bin[static_cast<std::size_t>(c)] = b;
+    bins[b[0] + nbins[0] * (b[1] + nbins[1] * b[2])].push_back(c);
+  }
+
+  auto close = [&](Index e, Index f) {
+    double d2 = 0.0;
+    for (int d = 0; d < dim; ++d) {
+      const double gap = std::max({lo[static_cast<std::size_t>(f)][d] - hi[static_cast<std::size_t>(e)][d],
+                                   lo[static_cast<std::size_t>(e)][d] - hi[static_cast<std::size_t>(f)][d], 0.0});
+      d2 += gap * gap;
+    }
+    return d2 < horizon * horizon;
+  };
+
+  std::vector<std::vector<Index>> rows(static_cast<std::size_t>(ncells));
+#pragma omp parallel for schedule(dynamic, 64)
+  for (Index e = 0; e < ncells; ++e) {
+    const auto b = cell_bin[static_cast<std::size_t>(e)];
+    auto& row = rows[static_cast<std::size_t>(e)];
+    for (long k = (dim > 2 ? -1 : 0); k <= (dim > 2 ? 1 : 0); ++k)
+      for (long j = (dim > 1 ? -1 : 0); j <= (dim > 1 ? 1 : 0); ++j)
+        for (long i = -1; i <= 1; ++i) {
+          const long bi = b[0] + i, bj = b[1] + j, bk = b[2] + k;
+          if (bi < 0 || bj < 0 || bk < 0 || bi >= nbins[0] || bj >= nbins[1] || bk >= nbins[2]) continue;
+          auto it = bins.find(bi + nbins[0] * (bj + nbins[1] * bk));
+          if (it == bins.end()) continue;
+          for (Index f : it->second)
+            if (close(e, f) && (!keep || keep(std::min(e, f), std::max(e, f)))) row.push_back(f);
+        }
+    std::sort(row.begin(), row.end());
+  }
+  CellGraph g;
+  g.offsets.reserve(static_cast<std::size_t>(ncells) + 1);
+  g.offsets.push_back(0);
+  for (const auto& row : rows) {
+    g.neighbors.insert(g.neighbors.end(), row.begin(), row.end());
+    g.offsets.push_back(static_cast<Index>(g.neighbors.size()));
+  }
+  return g;
+}
+
+}  // namespace perimorph::bonds

@@ -1,0 +1,38 @@
+#pragma once
+// The quadrature points of the non-local double integral (THEORY §4): their
+// positions, weights w|J| (× thickness in 2D, × area in 1D) and α, computed
+// once and stored flat (cell c, point q at index c·n + q). The non-local
+// quadrature order is its own input, separate from the local one.
+
+#include "perimorph/alpha/alpha_field.hpp"
+#include "perimorph/core/types.hpp"
+
+#include <vector>
+
+namespace perimorph::mesh {
+class Mesh;
+}
+
+namespace perimorph::bonds {
+
+struct NonlocalPoints {
+  int dim = 3;
+  int per_cell = 0;
+  std::vector<Vec3> x;
+  std::vector<double> weight;
+  std::vector<double> alpha;
+  /// Reference Q1 shape values at the points: per_cell × nodes_per_cell,
+  /// row q = point q (identical for every cell).
+  std::vector<double> shape;
+  std::vector<double> cell_alpha_max, cell_alpha_min;
+
+  Index num_cells() const { return static_cast<Index>(cell_alpha_max.size()); }
+  std::size_t index(Index c, int q) const { return static_cast<std::size_t>(c) * static_cast<std::size_t>(per_cell) + static_cast<std::size_t>(q); }
+};
+
+/// Points of an n-per-direction Gauss–Legendre rule in every cell, with α
+/// evaluated at each; `scale` multiplies every weight (thickness or area).
+NonlocalPoints make_nonlocal_points(const mesh::Mesh& mesh, int n_per_direction, double scale,
+                                    const alpha::AlphaField& alpha);
+
+}  // namespace perimorph::bonds

@@ -1,0 +1,35 @@
+#pragma once
+// Setting up the non-local part of a case (THEORY §1–§4): the calibrated
+// micromodulus, the α field, the non-local quadrature points, the cell graph
+// and the morphed local stiffness. Case data in, pipeline objects out.
+
+#include "perimorph/alpha/alpha_field.hpp"
+#include "perimorph/assembly/morphed_stiffness.hpp"
+#include "perimorph/bonds/cell_graph.hpp"
+#include "perimorph/bonds/nonlocal_points.hpp"
+#include "perimorph/casefile/case_config.hpp"
+#include "perimorph/peridynamics/micromodulus.hpp"
+
+namespace perimorph::driver {
+
+struct NonlocalModel {
+  peridynamics::Micromodulus kernel;
+  peridynamics::Calibration calibration;
+  alpha::AlphaField alpha = alpha::AlphaField::constant(0.0);
+  bonds::NonlocalPoints points;
+  bonds::CellGraph graph;
+  assembly::MorphedStiffness morph;
+};
+
+/// The α field of a case (α ≡ 0 when [alpha] is absent).
+alpha::AlphaField make_alpha_field(const casefile::CaseConfig& config);
+
+/// The micromodulus of a case (shape, δ, l; scale not yet calibrated).
+peridynamics::Micromodulus make_kernel(const casefile::NonlocalSpec& spec);
+
+/// The material the non-local model is calibrated from: the case must have a
+/// single isotropic material; its ν is checked against (or, if not given,
+/// set to) the central-force value. Throws InputError naming the key.
+casefile::MaterialSpec calibration_material(const casefile::CaseConfig& config);
+
+}  // namespace perimorph::driver

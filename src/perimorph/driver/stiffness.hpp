@@ -1,0 +1,20 @@
+#pragma once
+// The hybrid stiffness K = K_local(C(x)) + K_nl of a model (THEORY §4),
+// assembled into a PETSc matrix with exact preallocation.
+
+#include "perimorph/assembly/nonlocal_assembly.hpp"
+#include "perimorph/driver/model.hpp"
+#include "perimorph/la/matrix.hpp"
+
+namespace perimorph::driver {
+
+struct AssembledStiffness {
+  la::Matrix K;
+  assembly::NonlocalStats nonlocal;  ///< zero for a purely local model
+  double local_seconds = 0.0, nonlocal_seconds = 0.0, setup_seconds = 0.0;
+};
+
+/// Assembles K (unconstrained, finalized).
+AssembledStiffness assemble_stiffness(const Model& model);
+
+}  // namespace perimorph::driver

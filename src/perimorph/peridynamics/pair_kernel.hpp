@@ -1,0 +1,131 @@
+#pragma once
+// The non-local stiffness of one pair of cells (THEORY §4, eqs. 3.13, 3.18):
+//
+//   K_EF = Σ_{bonds (g ∈ E, h ∈ F), 0 < |ξ| < δ} W_gh ᾱ_gh c(ξ) b_ghᵀ b_gh,
+//   W_gh = w_g w_h, ᾱ_gh = (α_g + α_h)/2, b_gh u = e·(u_F(x_h) − u_E(x_g)).
+//
+// For E = F every unordered pair of points counts once. A pure kernel: small
+// arrays in, a dense block out; no allocation, no I/O. Cost per bond O(D²·n_F)
+// by summing over h first:
+//   K_EE += Σ_g N_g N_gᵀ ⊗ T_g,  T_g = Σ_h k G       (G = e eᵀ, k = W ᾱ c)
+//   K_FF += Σ_h N_h N_hᵀ ⊗ S_h,  S_h = Σ_g k G
+//   K_EF −= Σ_g N_g ⊗ U_g,       U_g = Σ_h k G N_hᵀ
+
+#include "perimorph/core/types.hpp"
+#include "perimorph/mesh/mesh.hpp"
+#include "perimorph/peridynamics/micromodulus.hpp"
+
+#include <array>
+#include <cmath>
+#include <span>
+
+namespace perimorph::peridynamics {
+
+/// The quadrature points of one cell, as the kernel sees them.
+struct CellPoints {
+  const Vec3* x = nullptr;
+  const double* weight = nullptr;
+  const double* alpha = nullptr;  ///< may be null when unit_alpha is set
+  int count = 0;
+  const double* shape = nullptr;  ///< count × nodes, row q = point q
+  int nodes = 0;                  ///< 8, 4, 2 (Q1) or 1 (DG degree 0)
+};
+
+inline constexpr int max_cell_nodes = 8;
+
+/// True if the bond x_g–x_h crosses one of the cuts (a pre-crack removes it).
+inline bool bond_cut(const Vec3& a, const Vec3& b, std::span<const mesh::Cut> cuts) {
+  for (const auto& cut : cuts)
+    if (cut.crosses(a, b)) return true;
+  return false;
+}
+
+/// Writes the block of the pair (E, F) into `block`, row-major, dofs ordered
+/// node-major: [E's nodes × D, F's nodes × D] (only E's when same_cell).
+/// `unit_alpha`: every α is 1 (ᾱ = 1, α not read). Returns the number of bonds.
+template <int D>
+std::size_t pair_stiffness(const CellPoints& E, const CellPoints& F, bool same_cell, const Micromodulus& c,
+                           std::span<const mesh::Cut> cuts, bool unit_alpha, double* block) {
+  const int nE = E.nodes, nF = F.nodes;
+  const int n = same_cell ? nE * D : (nE + nF) * D;
+  for (int i = 0; i < n * n; ++i) block[i] = 0.0;
+  const double delta2 = c.horizon * c.horizon;
+  std::size_t bonds = 0;
+  std::array<double, max_cell_nodes * D * D> U{};
+  std::array<double, D * D> T{};
+  auto at = [&](int row_node, int i, int col_node, int j) -> double& {
+    return block[(row_node * D + i) * n + col_node * D + j];
+  };
+  // S_h accumulates in FF directly at the end of each g? No: S_h depends on all g;
+  // store S per point of F (at most 216 points).
+  constexpr int max_points = 216;
+  std::array<double, max_points * D * D> S{};
+  if (!same_cell)
+    for (int i = 0; i < F.count * D * D; ++i) S[static_cast<std::size_t>(i)] = 0.0;
+
+  for (int g = 0; g < E.count; ++g) {
+    T.fill(0.0);
+    for (int i = 0; i < nF * D * D; ++i) U[static_cast<std::size_t>(i)] = 0.0;
+    const Vec3& xg = E.x[g];
+    bool any = false;
+    for (int h = 0; h < F.count; ++h) {
+      if (same_cell && h == g) continue;
+      const Vec3 xi = F.x[h] - xg;
+      const double r2 = xi.squaredNorm();
+      if (r2 >= delta2 || r2 == 0.0) continue;
+      if (!cuts.empty() && bond_cut(xg, F.x[h], cuts)) continue;
+      const double r = std::sqrt(r2);
+      const double abar = unit_alpha ? 1.0 : 0.5 * (E.alpha[g] + F.alpha[h]);
+      if (abar == 0.0) continue;
+      const double k = E.weight[g] * F.weight[h] * abar * c(r) / r2;  // G = ξξᵀ/r²
+      ++bonds;
+      any = true;
+      double kG[D * D];
+      for (int i = 0; i < D; ++i)
+        for (int j = 0; j < D; ++j) kG[i * D + j] = k * xi[i] * xi[j];
+      for (int i = 0; i < D * D; ++i) T[static_cast<std::size_t>(i)] += kG[i];
+      if (!same_cell)
+        for (int i = 0; i < D * D; ++i) S[static_cast<std::size_t>(h * D * D + i)] += kG[i];
+      const double* Nh = F.shape + h * nF;
+      for (int b = 0; b < nF; ++b)
+        for (int i = 0; i < D * D; ++i) U[static_cast<std::size_t>(b * D * D + i)] += kG[i] * Nh[b];
+    }
+    if (!any) continue;
+    const double* Ng = E.shape + g * nE;
+    for (int a = 0; a < nE; ++a)
+      for (int a2 = 0; a2 < nE; ++a2) {
+        const double NN = Ng[a] * Ng[a2];
+        for (int i = 0; i < D; ++i)
+          for (int j = 0; j < D; ++j) at(a, i, a2, j) += NN * T[static_cast<std::size_t>(i * D + j)];
+      }
+    const int offF = same_cell ? 0 : nE;
+    for (int a = 0; a < nE; ++a)
+      for (int b = 0; b < nF; ++b)
+        for (int i = 0; i < D; ++i)
+          for (int j = 0; j < D; ++j) at(a, i, offF + b, j) -= Ng[a] * U[static_cast<std::size_t>(b * D * D + i * D + j)];
+  }
+  if (same_cell) {
+    // The cross term was added for ordered (g, h); symmetrize: K_EE(cross) = −Σ_g N_g ⊗ U_g is
+    // already symmetric as a whole because k, G are symmetric in (g, h).
+    return bonds / 2;
+  }
+  for (int h = 0; h < F.count; ++h) {
+    const double* Nh = F.shape + h * nF;
+    const double* Sh = S.data() + h * D * D;
+    for (int b = 0; b < nF; ++b)
+      for (int b2 = 0; b2 < nF; ++b2) {
+        const double NN = Nh[b] * Nh[b2];
+        if (NN == 0.0) continue;
+        for (int i = 0; i < D; ++i)
+          for (int j = 0; j < D; ++j) at(nE + b, i, nE + b2, j) += NN * Sh[i * D + j];
+      }
+  }
+  // K_FE = K_EFᵀ.
+  for (int a = 0; a < nE; ++a)
+    for (int b = 0; b < nF; ++b)
+      for (int i = 0; i < D; ++i)
+        for (int j = 0; j < D; ++j) at(nE + b, j, a, i) = at(a, i, nE + b, j);
+  return bonds;
+}
+
+}  // namespace perimorph::peridynamics

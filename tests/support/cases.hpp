@@ -1,0 +1,48 @@
+#pragma once
+// Test support: small cases built as typed CaseConfig structs (the form a
+// parsed case file takes), so tests exercise the same path as the program.
+
+#include "perimorph/casefile/case_config.hpp"
+
+#include <limits>
+
+namespace perimorph::testing {
+
+/// Box of `cells` on [0, extent]^dim, one isotropic material, no loads.
+inline casefile::CaseConfig box_case(int dim, std::array<Index, 3> cells, Vec3 extent, double E, double nu) {
+  casefile::CaseConfig c;
+  c.path = "test.toml";
+  c.mesh.box = {dim, Vec3::Zero(), extent, cells};
+  casefile::MaterialSpec m;
+  m.name = "m";
+  m.E = E;
+  m.nu = nu;
+  c.materials = {m};
+  c.output.vtu = false;
+  return c;
+}
+
+/// Adds a [nonlocal] section.
+inline void add_nonlocal(casefile::CaseConfig& c, casefile::KernelKind kernel, double horizon, double length,
+                         int quadrature,
+                         casefile::Discretization dg = casefile::Discretization::continuous) {
+  c.nonlocal.enabled = true;
+  c.nonlocal.kernel = kernel;
+  c.nonlocal.horizon = horizon;
+  c.nonlocal.length = length;
+  c.nonlocal.quadrature = quadrature;
+  c.nonlocal.discretization = dg;
+}
+
+inline casefile::AlphaRegionSpec alpha_ball(Vec3 centre, double radius, double transition,
+                                            casefile::AlphaProfile profile = casefile::AlphaProfile::cubic) {
+  casefile::AlphaRegionSpec r;
+  r.shape = casefile::AlphaShapeKind::ball;
+  r.point = centre;
+  r.radius = radius;
+  r.transition = transition;
+  r.profile = profile;
+  return r;
+}
+
+}  // namespace perimorph::testing
