@@ -2,10 +2,13 @@
 // read the case file, hand over to the driver, report errors once.
 //
 //   perimorph check CASE                 validate a case file without running
+//   perimorph info CASE                  calibration and discretization figures
 //   perimorph run CASE [-o DIR] [--quiet] [PETSc options...]
+//   perimorph ghost-forces CASE --strain ... [-o DIR]
 
 #include "perimorph/casefile/parse_case.hpp"
 #include "perimorph/core/error.hpp"
+#include "perimorph/driver/ghost_forces.hpp"
 #include "perimorph/driver/model.hpp"
 #include "perimorph/driver/static_run.hpp"
 #include "perimorph/la/petsc_session.hpp"
@@ -14,6 +17,8 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -25,6 +30,71 @@ int check(const std::string& path) {
   fmt::print("{}: OK — {}D, {} cells, {} nodes, {} dofs, {} material(s), {} increment(s)\n", path, model.dim(),
              model.mesh.num_cells(), model.mesh.num_nodes(), model.dofmap.num_dofs(), config.materials.size(),
              config.loading.factors.size());
+  return 0;
+}
+
+/// A PETSc session with no options of its own (commands that assemble but do not solve).
+std::unique_ptr<perimorph::la::PetscSession> quiet_petsc() { return std::make_unique<perimorph::la::PetscSession>(); }
+
+int info(const std::string& path) {
+  const auto config = perimorph::casefile::parse_case_file(path);
+  auto petsc = quiet_petsc();
+  const auto model = perimorph::driver::build_model(config);
+  fmt::print("case       {}\n", path);
+  fmt::print("mesh       {}D, {} cells, {} nodes; {} dof nodes, {} dofs\n", model.dim(), model.mesh.num_cells(),
+             model.mesh.num_nodes(), model.dofmap.num_nodes(), model.dofmap.num_dofs());
+  if (!model.nonlocal) {
+    fmt::print("model      local only (no [nonlocal] section)\n");
+    return 0;
+  }
+  const auto& nl = *model.nonlocal;
+  const auto& cal = nl.calibration;
+  fmt::print("kernel     {}, horizon delta = {}, length l = {}\n", perimorph::peridynamics::to_string(nl.kernel.shape),
+             nl.kernel.horizon, nl.kernel.length);
+  fmt::print("scale      c_hat = {:.6e}  (micromodulus c(r) = c_hat * phi(r))\n", cal.scale);
+  if (model.dim() > 1) fmt::print("equivalent lambda = mu = {:.6e}, E = {:.6e}, nu = {:.6f}\n", cal.lame, cal.E, cal.nu);
+  else fmt::print("equivalent E = {:.6e}\n", cal.E);
+  fmt::print("fracture   G_c = {:.6e} * s_crit^2  (bulk closed form, THEORY §5)\n", cal.gc_factor);
+  perimorph::Index positive = 0, pure = 0;
+  for (perimorph::Index c = 0; c < model.mesh.num_cells(); ++c) {
+    positive += nl.points.cell_alpha_max[static_cast<std::size_t>(c)] > 0 ? 1 : 0;
+    pure += nl.morph.purely_nonlocal[static_cast<std::size_t>(c)] ? 1 : 0;
+  }
+  fmt::print("alpha      {} cells with alpha > 0, {} morphing cells, {} purely non-local cells\n", positive,
+             nl.morph.morphing_cells, pure);
+  fmt::print("bonds      {} non-local points per cell, {} interacting cell pairs\n", nl.points.per_cell,
+             nl.graph.num_pairs());
+  return 0;
+}
+
+int ghost_forces(const std::string& path, const std::vector<double>& strain, const std::string& out_dir) {
+  const auto config = perimorph::casefile::parse_case_file(path);
+  const int dim = config.dim();
+  const std::size_t expected = dim == 1 ? 1 : dim == 2 ? 3 : 6;
+  if (strain.size() != expected)
+    throw perimorph::InputError(fmt::format("--strain needs {} values in {}D ({}); got {}", expected, dim,
+                                            dim == 1 ? "exx" : dim == 2 ? "exx,eyy,exy" : "exx,eyy,ezz,eyz,exz,exy",
+                                            strain.size()));
+  perimorph::Mat3 eps = perimorph::Mat3::Zero();
+  eps(0, 0) = strain[0];
+  if (dim == 2) {
+    eps(1, 1) = strain[1];
+    eps(0, 1) = eps(1, 0) = strain[2];
+  } else if (dim == 3) {
+    eps(1, 1) = strain[1];
+    eps(2, 2) = strain[2];
+    eps(1, 2) = eps(2, 1) = strain[3];
+    eps(0, 2) = eps(2, 0) = strain[4];
+    eps(0, 1) = eps(1, 0) = strain[5];
+  }
+  auto petsc = quiet_petsc();
+  const auto model = perimorph::driver::build_model(config);
+  const auto g = perimorph::driver::compute_ghost_forces(model, eps);
+  const std::string dir = perimorph::driver::resolve_output_directory(config, {out_dir, true});
+  const std::string base = config.output.basename.empty() ? std::filesystem::path(path).stem().string()
+                                                          : config.output.basename;
+  const auto csv = perimorph::driver::write_ghost_forces(model, g, dir, base);
+  fmt::print("max ghost-force density {:.6e}; wrote {}\n", g.max_density, csv);
   return 0;
 }
 
@@ -66,6 +136,10 @@ int main(int argc, char** argv) {
   auto* check_cmd = app.add_subcommand("check", "Validate a case file (and build its mesh) without running it");
   check_cmd->add_option("CASE", case_path, "Case file (TOML)")->required();
 
+  auto* info_cmd = app.add_subcommand("info", "Print the calibrated micromodulus (scale, equivalent lambda = mu, E, "
+                                               "nu, G_c factor) and the discretization figures of a case");
+  info_cmd->add_option("CASE", case_path, "Case file (TOML)")->required();
+
   std::string out_dir;
   bool quiet = false;
   auto* run_cmd = app.add_subcommand("run", "Run a case: every load increment, VTU/PVD and CSV output");
@@ -75,6 +149,17 @@ int main(int argc, char** argv) {
   run_cmd->allow_extras();
   run_cmd->footer("Any further argument starting with '-' is passed to PETSc's options database.");
 
+  std::vector<double> strain;
+  auto* ghost_cmd = app.add_subcommand(
+      "ghost-forces", "Impose u = strain * x on every degree of freedom and write the residual (ghost forces) and its "
+                      "density per nodal volume, as VTU and CSV (THEORY §3.2)");
+  ghost_cmd->add_option("CASE", case_path, "Case file (TOML)")->required();
+  ghost_cmd->add_option("--strain", strain, "Imposed strain: exx (1D); exx,eyy,exy (2D); exx,eyy,ezz,eyz,exz,exy "
+                                            "(3D), tensorial shear")
+      ->required()
+      ->delimiter(',');
+  ghost_cmd->add_option("-o,--output", out_dir, "Output directory (default: the case's [output] directory)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -83,6 +168,8 @@ int main(int argc, char** argv) {
 
   try {
     if (*check_cmd) return check(case_path);
+    if (*info_cmd) return info(case_path);
+    if (*ghost_cmd) return ghost_forces(case_path, strain, out_dir);
     return run(case_path, out_dir, quiet, run_cmd->remaining());
   } catch (const perimorph::InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());

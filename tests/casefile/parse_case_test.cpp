@@ -466,15 +466,15 @@ TEST(CaseFileNonlocal, EveryKernel) {
   for (const auto& [name, kind] : kernels) {
     SCOPED_TRACE(name);
     const bool scaled = kind == KernelKind::exponential || kind == KernelKind::gaussian;
-    const CaseConfig c = parse_case_string(
-        std::string(kMinimal2D) + "\n[nonlocal]\nkernel = \"" + name + "\"\nhorizon = 1.5\n" +
-            (scaled ? "length = 0.25\n" : ""),
-        "k.toml");
+    const CaseConfig c = parse_case_string(std::string(kMinimal2D) + "\n[nonlocal]\nkernel = \"" + name +
+                                               "\"\nhorizon = 1.5\n" + (scaled ? "length = 0.25\n" : ""),
+                                           "k.toml");
     EXPECT_EQ(c.nonlocal.kernel, kind);
     EXPECT_EQ(c.nonlocal.length, scaled ? 0.25 : 0.0);
   }
   const CaseConfig c = parse_case_string(
-      std::string(kMinimal2D) + "\n[nonlocal]\nkernel = \"conical\"\nhorizon = 1\ndiscretization = \"discontinuous\"\n",
+      std::string(kMinimal2D) +
+          "\n[nonlocal]\nkernel = \"conical\"\nhorizon = 1\ndiscretization = \"discontinuous\"\n",
       "dg.toml");
   EXPECT_EQ(c.nonlocal.discretization, Discretization::discontinuous);
 }
@@ -584,8 +584,8 @@ transition = 0.5
 TEST(CaseFileAlpha, ErrorsNameKeyAndAlternatives) {
   const std::string nl = std::string(kMinimal2D) + "\n[nonlocal]\nkernel = \"constant\"\nhorizon = 1\n";
   // A key of another shape names what this shape takes.
-  std::string msg = error_of(nl + "[[alpha.region]]\nshape = \"ball\"\ncenter = [1, 1]\nradius = 1\nnormal = [1, 0]\n",
-                             "s.toml");
+  std::string msg = error_of(
+      nl + "[[alpha.region]]\nshape = \"ball\"\ncenter = [1, 1]\nradius = 1\nnormal = [1, 0]\n", "s.toml");
   EXPECT_EQ(msg.rfind("s.toml:20:1: key 'alpha.region[1].normal' is not allowed here: a ball takes center = "
                       "[x, y] and radius",
                       0),
@@ -593,14 +593,16 @@ TEST(CaseFileAlpha, ErrorsNameKeyAndAlternatives) {
       << msg;
   // A misspelt key is caught before the shape is read.
   msg = error_of(nl + "[[alpha.region]]\nshap = \"ball\"\n", "s.toml");
-  EXPECT_TRUE(contains(msg, "unknown key 'alpha.region[1].shap'; did you mean 'alpha.region[1].shape'?")) << msg;
+  EXPECT_TRUE(contains(msg, "unknown key 'alpha.region[1].shap'; did you mean 'alpha.region[1].shape'?"))
+      << msg;
   // An unknown shape lists the shapes.
   msg = error_of(nl + "[[alpha.region]]\nshape = \"sphere\"\n", "s.toml");
   EXPECT_TRUE(contains(msg, "key 'alpha.region[1].shape': unknown shape \"sphere\"")) << msg;
   EXPECT_TRUE(contains(msg, "\"interval\", \"slab\", \"ball\", \"cylinder\", \"box\"")) << msg;
   // nan is no bound of a box.
   msg = error_of(nl + "[[alpha.region]]\nshape = \"box\"\nlower = [nan, 0]\nupper = [1, 1]\n", "s.toml");
-  EXPECT_TRUE(contains(msg, "key 'alpha.region[1].lower[1]': expected a number (inf and -inf are allowed here)"))
+  EXPECT_TRUE(
+      contains(msg, "key 'alpha.region[1].lower[1]': expected a number (inf and -inf are allowed here)"))
       << msg;
   // Without [nonlocal], nu stays required and says when it is not.
   std::string local = kMinimal2D;

@@ -153,7 +153,8 @@ enum class AlphaProfile { heaviside, linear, cubic };
 /// fields of `shape` are set; vector components beyond mesh.dim are 0.
 /// `where` is the entry's [[alpha.region]] header.
 struct AlphaRegionSpec {
-  AlphaShapeKind shape = AlphaShapeKind::ball;  ///< interval: 1D only; cylinder: 3D only
+  /// interval: 1D only; cylinder: 3D only.
+  AlphaShapeKind shape = AlphaShapeKind::ball;
   Vec3 point = Vec3::Zero();       ///< ball centre (`center`), cylinder and slab `point`
   Vec3 direction = Vec3::UnitZ();  ///< slab `normal`, cylinder `axis`: normalized (given non-zero)
   double radius = 0.0;             ///< ball, cylinder: > 0

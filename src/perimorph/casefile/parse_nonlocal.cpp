@@ -28,9 +28,10 @@ const Options<KernelKind> kKernels{{"constant", KernelKind::constant},
                                    {"conical", KernelKind::conical},
                                    {"exponential", KernelKind::exponential},
                                    {"gaussian", KernelKind::gaussian}};
-const Options<Discretization> kDiscretizations{{"continuous", Discretization::continuous},
-                                               {"discontinuous", Discretization::discontinuous},
-                                               {"discontinuous-constant", Discretization::discontinuous_constant}};
+const Options<Discretization> kDiscretizations{
+    {"continuous", Discretization::continuous},
+    {"discontinuous", Discretization::discontinuous},
+    {"discontinuous-constant", Discretization::discontinuous_constant}};
 const Options<Coupling> kCouplings{{"morphing", Coupling::morphing}, {"partition", Coupling::partition}};
 const Options<AlphaShapeKind> kShapes{{"interval", AlphaShapeKind::interval},
                                       {"slab", AlphaShapeKind::slab},
@@ -68,7 +69,8 @@ Enum choose(const Value& v, const Options<Enum>& options, std::string_view what)
   }
   const std::string close = closest_match(given, names);
   v.fail(fmt::format("unknown {} {:?}; {}allowed: {}", what, given,
-                     close.empty() ? "" : fmt::format("did you mean {:?}? ", close), fmt::join(quoted, ", ")));
+                     close.empty() ? "" : fmt::format("did you mean {:?}? ", close),
+                     fmt::join(quoted, ", ")));
 }
 
 double positive(const Value& v, std::string_view what) {
@@ -117,9 +119,11 @@ Vec3 bounds(const Value& v, int dim) {
 const std::vector<std::string> kRegionCommonKeys{"shape", "transition", "profile"};
 
 /// The keys that each shape takes, in the order of AlphaShapeKind.
-const std::vector<std::string> kShapeKeys[5] = {
-    {"lower", "upper"}, {"point", "normal", "half_width"}, {"center", "radius"}, {"point", "axis", "radius"},
-    {"lower", "upper"}};
+const std::vector<std::string> kShapeKeys[5] = {{"lower", "upper"},
+                                                {"point", "normal", "half_width"},
+                                                {"center", "radius"},
+                                                {"point", "axis", "radius"},
+                                                {"lower", "upper"}};
 
 std::string shape_takes(AlphaShapeKind kind, int dim) {
   const std::string v = vector_form(dim);
@@ -205,8 +209,9 @@ AlphaRegionSpec read_alpha_region(const Table& t, int dim) {
     shape.fail(fmt::format("\"interval\" is a 1D shape (an interval along x), but mesh.dim = {}; {}", dim,
                            shapes_for(dim)));
   if (r.shape == AlphaShapeKind::cylinder && dim != 3)
-    shape.fail(fmt::format("\"cylinder\" is a 3D shape (points within radius of an axis), but mesh.dim = {}; {}",
-                           dim, shapes_for(dim)));
+    shape.fail(
+        fmt::format("\"cylinder\" is a 3D shape (points within radius of an axis), but mesh.dim = {}; {}",
+                    dim, shapes_for(dim)));
 
   // Then exactly the keys of this shape.
   const std::vector<std::string>& own = kShapeKeys[static_cast<std::size_t>(r.shape)];
@@ -215,7 +220,8 @@ AlphaRegionSpec read_alpha_region(const Table& t, int dim) {
   std::vector<std::pair<std::string, std::string>> hints;
   for (const std::string& k : every)
     if (std::find(allowed.begin(), allowed.end(), k) == allowed.end())
-      hints.emplace_back(k, fmt::format("{} (and optionally transition, profile)", shape_takes(r.shape, dim)));
+      hints.emplace_back(k,
+                         fmt::format("{}; transition and profile are optional", shape_takes(r.shape, dim)));
   t.check_keys(allowed, hints);
 
   if (auto v = t.get("transition"))
@@ -239,12 +245,13 @@ void read_nonlocal(const Table& root, CaseConfig& c) {
   const Value kernel = t->require(
       "kernel", "the micromodulus kernel: \"constant\", \"conical\", \"exponential\" or \"gaussian\"");
   n.kernel = choose(kernel, kKernels, "kernel");
-  n.horizon = positive(t->require("horizon", "the horizon δ > 0, the reach of the non-local bonds"),
-                       "the horizon δ");
+  n.horizon =
+      positive(t->require("horizon", "the horizon δ > 0, the reach of the non-local bonds"), "the horizon δ");
   const std::string name = kernel.string();
   if (n.kernel == KernelKind::exponential || n.kernel == KernelKind::gaussian)
-    n.length = positive(t->require("length", fmt::format("the {:?} kernel needs its length scale l > 0", name)),
-                        "the kernel's length scale l");
+    n.length =
+        positive(t->require("length", fmt::format("the {:?} kernel needs its length scale l > 0", name)),
+                 "the kernel's length scale l");
   else if (auto v = t->get("length"))
     v->fail(fmt::format(
         "the {:?} kernel has no length scale; remove it (length applies to the \"exponential\" and "
@@ -270,9 +277,9 @@ void read_alpha(const Table& root, CaseConfig& c) {
   const std::optional<Value> value = t->get("value");
   const std::vector<Table> regions = t->tables("region");
   if (value && t->has("region"))
-    value->fail(fmt::format(
-        "cannot be combined with [[alpha.region]]{}; give either a constant value or regions",
-        regions.empty() ? "" : fmt::format(" (line {})", regions.front().where().line)));
+    value->fail(
+        fmt::format("cannot be combined with [[alpha.region]]{}; give either a constant value or regions",
+                    regions.empty() ? "" : fmt::format(" (line {})", regions.front().where().line)));
   if (value) {
     a.value = value->number();
     if (!(a.value >= 0 && a.value <= 1))
