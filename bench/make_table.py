@@ -147,9 +147,12 @@ def not_run_reason(doc, entry, status, stats, rate):
     else:
         reason = f"not run: exit code {rc}"
     if "flops" in stats:
-        reason += f"; {stats['flops']:.2g} flops estimated"
+        reason += f". MUMPS's analysis estimates {stats['flops']:.3g} flops"
+        if "memory_mb" in stats:
+            reason += f" and {stats['memory_mb'] / 1024:.1f} GB"
         if rate:
-            reason += f", about {stats['flops'] / rate / 3600:.1f} h at the {rate / 1e9:.1f} GFlop/s of the largest finished factorization"
+            n, r = rate
+            reason += f": about {stats['flops'] / r / 3600:.1f} h of CPU at the {r / 1e9:.1f} GFlop/s of N={n}"
     return reason
 
 
@@ -175,12 +178,13 @@ def main():
         if entry is not None and not entry.get("error_occurred"):
             cases[("solve_mumps_cholesky", n)] = entry
 
-    # Flop rate of the largest finished factorization, to put the unfinished ones in minutes.
+    # Flop rate per process-CPU second of the largest finished direct solve (wall time
+    # depends on how busy the machine was), to put the unfinished ones in hours.
     rate = None
     for n in SIZES:
         doc, entry, status, stats = direct[n]
-        if entry is not None and not entry.get("error_occurred") and stats.get("factor_s") and stats.get("flops"):
-            rate = stats["flops"] / stats["factor_s"]
+        if entry is not None and not entry.get("error_occurred") and stats.get("flops"):
+            rate = (n, stats["flops"] / seconds(entry, "cpu_time"))
 
     model, cores, mem_gib, blas_kind = machine_description()
     ctx = main_doc.get("context", {})
@@ -198,7 +202,7 @@ def main():
     loads = "; ".join(f"{name}: {', '.join(f'{x:.1f}' for x in c.get('load_avg', []))}" for name, c in contexts)
     busiest = max((c.get("load_avg", [0.0])[0] for _, c in contexts), default=0.0)
     if busiest > 0.5:
-        add(f"**Timings are noisy**: the machine was shared with other work (another engineer compiling) while "
+        add(f"**Timings are noisy**: the machine was busy with other work (a concurrent compilation) while "
             f"this ran; load averages (1, 5, 15 min) at the start of each process: {loads}. A wall time well "
             "above the process CPU time (details table) shows a benchmark that did not get its cores.")
     else:

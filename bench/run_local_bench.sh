@@ -53,6 +53,8 @@ for n in 20 40 60; do
   printf 'rc=%s\nlimit_s=%s\nelapsed_s=%s\nmemory_allowed_mb=%s\nmemory_percent=%s\n' "$rc" "${LIMIT[$n]}" \
     "$((SECONDS - start))" "$mem_mb" "${DIRECT_MEMORY_PERCENT:-80}" >"$RESULTS/local_elasticity_direct$n.status"
   echo "   exit code $rc"
+  # A run stopped by the time limit leaves a truncated JSON file: drop it.
+  /usr/bin/python3 -c 'import json, sys; json.load(open(sys.argv[1]))' "$json" 2>/dev/null || rm -f "$json"
   grep -E '^solve_mumps' "$RESULTS/local_elasticity_direct$n.log" || true
 done
 

@@ -8,6 +8,8 @@
 #include "perimorph/peridynamics/pair_kernel.hpp"
 
 #include <algorithm>
+#include <array>
+#include <map>
 #include <vector>
 
 namespace perimorph::assembly {
@@ -18,7 +20,12 @@ constexpr Index chunk_cells = 16;
 
 struct PairTask {
   Index e, f;
+  long cached = -1;  ///< index into the translation cache, or -1
 };
+
+/// Key of a translation-invariant pair: the offset of F from E in cells and
+/// the node counts of both (CG/DG vs DG degree 0).
+using OffsetKey = std::array<long, 5>;
 
 /// Cells close enough to a cut that their bonds may cross it.
 std::vector<char> cells_near_cuts(const mesh::Mesh& mesh, double horizon) {
@@ -34,7 +41,7 @@ std::vector<char> cells_near_cuts(const mesh::Mesh& mesh, double horizon) {
 }
 
 template <int D>
-NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K) {
+NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const NonlocalOptions& options) {
   const auto& pts = s.points;
   PERIMORPH_ASSERT(pts.per_cell <= 216, "at most 6 non-local quadrature points per direction");
   const Index ncells = s.mesh.num_cells();
@@ -51,10 +58,45 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K) {
     p.shape = p.nodes == 1 ? ones.data() : pts.shape.data();
     return p;
   };
+  auto unit_pair = [&](Index e, Index f) {
+    return pts.cell_alpha_min[static_cast<std::size_t>(e)] >= 1.0 && pts.cell_alpha_min[static_cast<std::size_t>(f)] >= 1.0;
+  };
+  auto near = [&](Index e, Index f) { return near_cut[static_cast<std::size_t>(e)] && near_cut[static_cast<std::size_t>(f)]; };
+  auto compute = [&](Index e, Index f, double* block) {
+    const bool unit = options.unit_alpha_shortcut && unit_pair(e, f);
+    return peridynamics::pair_stiffness<D>(cell_points(e), cell_points(f), e == f, s.kernel,
+                                           near(e, f) ? std::span<const mesh::Cut>(s.mesh.cuts) : std::span<const mesh::Cut>{},
+                                           unit, block);
+  };
   const std::size_t max_block = static_cast<std::size_t>(2 * peridynamics::max_cell_nodes * D) *
                                 static_cast<std::size_t>(2 * peridynamics::max_cell_nodes * D);
 
+  // Translation cache: one representative pair per distinct key.
+  const bool use_cache = options.translation_cache && s.mesh.structure.has_value();
+  std::map<OffsetKey, long> cache_index;
+  std::vector<std::pair<Index, Index>> representatives;
+  auto key_of = [&](Index e, Index f) {
+    const auto a = s.mesh.structure->cell_ijk(e), b = s.mesh.structure->cell_ijk(f);
+    return OffsetKey{b[0] - a[0], b[1] - a[1], b[2] - a[2], static_cast<long>(s.dofmap.cell_nodes(e).size()),
+                     static_cast<long>(s.dofmap.cell_nodes(f).size())};
+  };
+  auto cacheable = [&](Index e, Index f) { return use_cache && unit_pair(e, f) && !near(e, f); };
+  if (use_cache) {
+    for (Index e = 0; e < ncells; ++e)
+      for (Index f : s.graph.row(e))
+        if (f >= e && cacheable(e, f)) {
+          auto [it, added] = cache_index.emplace(key_of(e, f), static_cast<long>(representatives.size()));
+          if (added) representatives.emplace_back(e, f);
+        }
+  }
+  std::vector<double> cache_blocks(representatives.size() * max_block);
+  std::vector<std::size_t> cache_bonds(representatives.size());
+#pragma omp parallel for schedule(dynamic, 4)
+  for (std::size_t r = 0; r < representatives.size(); ++r)
+    cache_bonds[r] = compute(representatives[r].first, representatives[r].second, cache_blocks.data() + r * max_block);
+
   NonlocalStats stats;
+  stats.distinct_blocks = representatives.size();
   std::vector<PairTask> tasks;
   std::vector<double> blocks;
   std::vector<std::size_t> bonds;
@@ -67,33 +109,30 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K) {
       for (Index f : s.graph.row(e)) {
         if (f < e) continue;
         if (amax_e + pts.cell_alpha_max[static_cast<std::size_t>(f)] <= 0.0) continue;
-        tasks.push_back({e, f});
+        tasks.push_back({e, f, cacheable(e, f) ? cache_index.at(key_of(e, f)) : -1});
       }
     }
     blocks.resize(tasks.size() * max_block);
     bonds.assign(tasks.size(), 0);
 #pragma omp parallel for schedule(dynamic, 4)
+    for (std::size_t t = 0; t < tasks.size(); ++t)
+      if (tasks[t].cached < 0) bonds[t] = compute(tasks[t].e, tasks[t].f, blocks.data() + t * max_block);
     for (std::size_t t = 0; t < tasks.size(); ++t) {
-      const auto [e, f] = tasks[t];
-      const bool unit = pts.cell_alpha_min[static_cast<std::size_t>(e)] >= 1.0 &&
-                        pts.cell_alpha_min[static_cast<std::size_t>(f)] >= 1.0;
-      const bool cut = near_cut[static_cast<std::size_t>(e)] && near_cut[static_cast<std::size_t>(f)];
-      bonds[t] = peridynamics::pair_stiffness<D>(cell_points(e), cell_points(f), e == f, s.kernel,
-                                                 cut ? std::span<const mesh::Cut>(s.mesh.cuts) : std::span<const mesh::Cut>{},
-                                                 unit, blocks.data() + t * max_block);
-    }
-    for (std::size_t t = 0; t < tasks.size(); ++t) {
-      if (bonds[t] == 0) continue;
-      const auto [e, f] = tasks[t];
+      const auto [e, f, cached] = tasks[t];
+      const std::size_t nb = cached >= 0 ? cache_bonds[static_cast<std::size_t>(cached)] : bonds[t];
+      if (nb == 0) continue;
       dofs.clear();
       for (Index n : s.dofmap.cell_nodes(e))
         for (int d = 0; d < D; ++d) dofs.push_back(n * D + d);
       if (f != e)
         for (Index n : s.dofmap.cell_nodes(f))
           for (int d = 0; d < D; ++d) dofs.push_back(n * D + d);
-      K.add(dofs, dofs, std::span<const double>(blocks.data() + t * max_block, dofs.size() * dofs.size()));
+      const double* block = cached >= 0 ? cache_blocks.data() + static_cast<std::size_t>(cached) * max_block
+                                        : blocks.data() + t * max_block;
+      K.add(dofs, dofs, std::span<const double>(block, dofs.size() * dofs.size()));
       ++stats.cell_pairs;
-      stats.bonds += bonds[t];
+      stats.bonds += nb;
+      stats.reused_pairs += cached >= 0 ? 1 : 0;
     }
   }
   return stats;
@@ -101,11 +140,11 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K) {
 
 }  // namespace
 
-NonlocalStats assemble_nonlocal(const NonlocalSpace& space, MatrixInserter& K) {
+NonlocalStats assemble_nonlocal(const NonlocalSpace& space, MatrixInserter& K, const NonlocalOptions& options) {
   switch (space.mesh.dim()) {
-    case 1: return assemble_dim<1>(space, K);
-    case 2: return assemble_dim<2>(space, K);
-    default: return assemble_dim<3>(space, K);
+    case 1: return assemble_dim<1>(space, K, options);
+    case 2: return assemble_dim<2>(space, K, options);
+    default: return assemble_dim<3>(space, K, options);
   }
 }
 

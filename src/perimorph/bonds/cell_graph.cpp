@@ -50,10 +50,17 @@ CellGraph find_cell_neighbors(const mesh::Mesh& mesh, double horizon, const std:
   std::vector<Vec3> lo(static_cast<std::size_t>(ncells)), hi(static_cast<std::size_t>(ncells));
   double extent = 0.0;
   for (Index c = 0; c < ncells; ++c) {
-    Vec3 l = Vec3::Constant(std::numeric_limits<double>::max()), h = -l;
+    Vec3 l, h;
+    for (int d = 0; d < 3; ++d) {
+      l[d] = std::numeric_limits<double>::max();
+      h[d] = std::numeric_limits<double>::lowest();
+    }
     for (Index n : mesh.cell(c)) {
-      l = l.cwiseMin(mesh.node(n));
-      h = h.cwiseMax(mesh.node(n));
+      const Vec3& x = mesh.node(n);
+      for (int d = 0; d < 3; ++d) {
+        l[d] = std::min(l[d], x[d]);
+        h[d] = std::max(h[d], x[d]);
+      }
     }
     lo[static_cast<std::size_t>(c)] = l;
     hi[static_cast<std::size_t>(c)] = h;

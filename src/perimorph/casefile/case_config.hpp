@@ -54,6 +54,18 @@ struct RegionSpec {
   SourceLocation where;
 };
 
+/// [[node_set]]: the mesh nodes x with lower - tol <= x <= upper + tol on
+/// every axis (tol = 1e-9 × the mesh's largest extent), selected when the mesh
+/// is built; both copies of a node split by a cut. upper >= lower (equal
+/// bounds: a plane, line or point). The name is unique and is no mesh set's
+/// (xmin, ..., boundary, all) or region's.
+struct NodeSetSpec {
+  std::string name;
+  Vec3 lower = Vec3::Zero();
+  Vec3 upper = Vec3::Zero();
+  SourceLocation where;
+};
+
 using PlaneMode = perimorph::PlaneMode;
 
 /// [model]
@@ -182,6 +194,7 @@ struct CaseConfig {
   std::string title;  ///< optional [case] title
   MeshSpec mesh;
   std::vector<RegionSpec> regions;
+  std::vector<NodeSetSpec> node_sets;
   ModelSpec model;
   std::vector<MaterialSpec> materials;
   std::vector<DirichletSpec> dirichlet;

@@ -7,6 +7,7 @@
 #include "perimorph/casefile/parse_case.hpp"
 
 #include "perimorph/casefile/parse_nonlocal.hpp"
+#include "perimorph/casefile/parse_sets.hpp"
 #include "perimorph/casefile/suggest.hpp"
 #include "perimorph/casefile/toml_reader.hpp"
 #include "perimorph/core/error.hpp"
@@ -559,13 +560,14 @@ CaseConfig parse_case_string(std::string_view toml_text, const std::string& pret
     detail::fail(at, fmt::format("TOML syntax error: {}", e.description()));
   }
   const Table root(pretend_path, doc, "");
-  root.check_keys({"case", "mesh", "region", "model", "material", "dirichlet", "traction", "loading",
-                   "solver", "output", "nonlocal", "alpha"});
+  root.check_keys({"case", "mesh", "region", "node_set", "model", "material", "dirichlet", "traction",
+                   "loading", "solver", "output", "nonlocal", "alpha"});
   CaseConfig c;
   c.path = pretend_path;
   read_case(root, c);
   read_mesh(root, c);
   read_regions(root, c);
+  detail::read_node_sets(root, c);
   read_model(root, c);
   c.nonlocal.enabled = root.has("nonlocal");  // makes an isotropic nu optional
   read_materials(root, c);

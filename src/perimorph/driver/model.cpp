@@ -5,6 +5,9 @@
 #include "perimorph/mesh/cut.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
 
 namespace perimorph::driver {
 
@@ -14,6 +17,30 @@ bool inside(const Vec3& x, const Vec3& lo, const Vec3& hi, int dim) {
   for (int d = 0; d < dim; ++d)
     if (x[d] < lo[d] || x[d] > hi[d]) return false;
   return true;
+}
+
+/// "[0, 24]": the first n components of v.
+std::string point(const Vec3& v, int n) {
+  return fmt::format("[{}]", fmt::join(v.data(), v.data() + n, ", "));
+}
+
+/// Fills m.node_sets[s.name] with the nodes in the box of s, widened by tol.
+void add_node_set(mesh::Mesh& m, const casefile::NodeSetSpec& s, double tol) {
+  const int dim = m.dim();
+  const auto names = m.set_names();
+  if (std::find(names.begin(), names.end(), s.name) != names.end())
+    throw InputError(fmt::format("{}: node set '{}': the mesh already has a set of that name; choose another name",
+                                 s.where.describe(), s.name));
+  const Vec3 lo = s.lower - Vec3::Constant(tol), hi = s.upper + Vec3::Constant(tol);
+  std::vector<Index> nodes;
+  for (Index n = 0; n < m.num_nodes(); ++n)
+    if (inside(m.node(n), lo, hi, dim)) nodes.push_back(n);
+  if (nodes.empty())
+    throw InputError(fmt::format("{}: node set '{}' (box {} to {}) selects no mesh node; enlarge its box to reach "
+                                 "a node (the mesh spans {} to {})",
+                                 s.where.describe(), s.name, point(s.lower, dim), point(s.upper, dim),
+                                 point(m.bounding_box().first, dim), point(m.bounding_box().second, dim)));
+  m.node_sets[s.name] = std::move(nodes);
 }
 
 }  // namespace
@@ -39,6 +66,14 @@ mesh::Mesh build_mesh(const casefile::CaseConfig& config) {
     } catch (const InputError& e) {
       throw InputError(fmt::format("{}: {}", c.where.describe(), e.what()));
     }
+  }
+  // After the cuts, so that both copies of a split node are selected.
+  if (!config.node_sets.empty()) {
+    const auto [lo, hi] = m.bounding_box();
+    double extent = 0.0;
+    for (int d = 0; d < box.dim; ++d) extent = std::max(extent, hi[d] - lo[d]);
+    const double tol = 1e-9 * extent;
+    for (const auto& s : config.node_sets) add_node_set(m, s, tol);
   }
   return m;
 }
@@ -73,7 +108,7 @@ Model build_model(const casefile::CaseConfig& config) {
     nl.emplace();
     nl->kernel = make_kernel(config.nonlocal);
     nl->calibration = peridynamics::calibrate_isotropic(nl->kernel, dim, config.model.plane, mat.E);
-    nl->kernel.scale = nl->calibration.scale;
+    nl->kernel.scale = nl->calibration.scale / scale;  // bond weights W = t² w w carry t twice
     nl->alpha = make_alpha_field(config);
     nl->points = bonds::make_nonlocal_points(m, config.nonlocal.quadrature, scale, nl->alpha);
     const auto& amax = nl->points.cell_alpha_max;

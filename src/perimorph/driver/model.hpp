@@ -33,7 +33,10 @@ struct Model {
   }
 };
 
-/// The mesh of a case: box, regions (cell sets and region ids), cuts.
+/// The mesh of a case: box, regions (cell sets and region ids), cuts, then
+/// [[node_set]] node sets (so both copies of a split node are selected);
+/// throws InputError for a cut off the element faces, an empty region or a
+/// node set that selects no node.
 mesh::Mesh build_mesh(const casefile::CaseConfig& config);
 
 /// 3D stiffness (Voigt 6×6) of a case material, checked for admissibility.

@@ -77,6 +77,11 @@ Mesh make_box(const BoxSpec& spec) {
   std::vector<Index> all(static_cast<std::size_t>(mesh.num_cells()));
   for (Index c = 0; c < mesh.num_cells(); ++c) all[static_cast<std::size_t>(c)] = c;
   mesh.cell_sets["all"] = std::move(all);
+  StructuredLayout layout;
+  layout.cells = n;
+  layout.origin = spec.lower;
+  for (int d = 0; d < dim; ++d) layout.spacing[d] = (spec.upper[d] - spec.lower[d]) / static_cast<double>(n[static_cast<std::size_t>(d)]);
+  mesh.structure = layout;
   return mesh;
 }
 

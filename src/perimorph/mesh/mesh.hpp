@@ -6,7 +6,9 @@
 #include "perimorph/core/types.hpp"
 #include "perimorph/mesh/cell_type.hpp"
 
+#include <array>
 #include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -36,6 +38,16 @@ struct Cut {
   bool crosses(const Vec3& a, const Vec3& b) const;
   /// True if p lies on the closed cut within tolerance tol (absolute length).
   bool contains(const Vec3& p, double tol) const;
+};
+
+/// The layout of a structured box mesh: cell c = i + n0 (j + n1 k) is the box
+/// [origin + (i, j, k) ∘ spacing, origin + (i+1, j+1, k+1) ∘ spacing]. All
+/// cells are translates of each other, which the non-local assembly exploits.
+struct StructuredLayout {
+  std::array<Index, 3> cells{1, 1, 1};
+  Vec3 origin = Vec3::Zero();
+  Vec3 spacing = Vec3::Ones();
+  std::array<Index, 3> cell_ijk(Index c) const { return {c % cells[0], (c / cells[0]) % cells[1], c / (cells[0] * cells[1])}; }
 };
 
 class Mesh {
@@ -68,6 +80,8 @@ public:
   std::vector<int> cell_region;
   /// Cuts along which nodes were split (see split_along_cut).
   std::vector<Cut> cuts;
+  /// Set for structured boxes (make_box); node splitting keeps it valid.
+  std::optional<StructuredLayout> structure;
 
   /// Node set by name, or the nodes of a face set of that name; throws
   /// InputError naming the known sets if neither exists.
