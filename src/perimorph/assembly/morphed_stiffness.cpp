@@ -41,7 +41,7 @@ Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const
   const auto pairs = voigt_pairs(dim);
   const int nv = static_cast<int>(pairs.size());
   Eigen::MatrixXd I = Eigen::MatrixXd::Zero(nv, nv);
-  const double delta2 = kernel.horizon * kernel.horizon;
+  const double delta2 = peridynamics::horizon_cutoff_squared(kernel.horizon);
   for (Index f : cells)
     for (int h = 0; h < points.per_cell; ++h) {
       const std::size_t k = points.index(f, h);

@@ -64,7 +64,7 @@ CellGraph find_cell_neighbors(const mesh::Mesh& mesh, double horizon, const std:
     }
     lo[static_cast<std::size_t>(c)] = l;
     hi[static_cast<std::size_t>(c)] = h;
-    extent = std::max(extent, (h - l).head(dim).maxCoeff());
+    for (int d = 0; d < dim; ++d) extent = std::max(extent, h[d] - l[d]);
   }
   // Bins of size ≥ horizon + extent: interacting cells have centroids in
   // adjacent bins.

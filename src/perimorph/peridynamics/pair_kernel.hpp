@@ -33,6 +33,12 @@ struct CellPoints {
 
 inline constexpr int max_cell_nodes = 8;
 
+/// Bonds are kept for |ξ|² < horizon_cutoff_squared(δ). The horizon is open
+/// (|ξ| < δ) and a bond within a relative 1e-10 of δ counts as exactly δ and
+/// is left out: on grids with δ/h rational, many point pairs lie exactly δ
+/// apart, and round-off in their coordinates must not decide bond by bond.
+inline double horizon_cutoff_squared(double delta) { return delta * delta * (1.0 - 1e-10); }
+
 /// True if the bond x_g–x_h crosses one of the cuts (a pre-crack removes it).
 inline bool bond_cut(const Vec3& a, const Vec3& b, std::span<const mesh::Cut> cuts) {
   for (const auto& cut : cuts)
@@ -49,7 +55,7 @@ std::size_t pair_stiffness(const CellPoints& E, const CellPoints& F, bool same_c
   const int nE = E.nodes, nF = F.nodes;
   const int n = same_cell ? nE * D : (nE + nF) * D;
   for (int i = 0; i < n * n; ++i) block[i] = 0.0;
-  const double delta2 = c.horizon * c.horizon;
+  const double delta2 = horizon_cutoff_squared(c.horizon);
   std::size_t bonds = 0;
   std::array<double, max_cell_nodes * D * D> U{};
   std::array<double, D * D> T{};
