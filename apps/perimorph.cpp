@@ -51,7 +51,8 @@ int info(const std::string& path) {
   const auto& cal = nl.calibration;
   fmt::print("kernel     {}, horizon delta = {}, length l = {}\n", perimorph::peridynamics::to_string(nl.kernel.shape),
              nl.kernel.horizon, nl.kernel.length);
-  fmt::print("scale      c_hat = {:.6e}  (micromodulus c(r) = c_hat * phi(r))\n", cal.scale);
+  fmt::print("scale      c_hat = {:.6e}  (micromodulus c(r) = c_hat * phi(r)){}\n", cal.scale,
+             nl.discrete_factor != 1.0 ? fmt::format("; discrete calibration factor {:.8f}", nl.discrete_factor) : "");
   if (model.dim() > 1) fmt::print("equivalent lambda = mu = {:.6e}, E = {:.6e}, nu = {:.6f}\n", cal.lame, cal.E, cal.nu);
   else fmt::print("equivalent E = {:.6e}\n", cal.E);
   fmt::print("fracture   G_c = {:.6e} * s_crit^2  (bulk closed form, THEORY §5)\n", cal.gc_factor);

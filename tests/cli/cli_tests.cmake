@@ -42,3 +42,9 @@ add_test(NAME cli_solvers_agree
   COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/cli/compare_csv.py
           ${PM_CLI_OUT}/direct/plate_tension.csv ${PM_CLI_OUT}/gamg/plate_tension.csv reaction_ymax_y 1e-8)
 set_tests_properties(cli_solvers_agree PROPERTIES FIXTURES_REQUIRED "cli_direct;cli_gamg")
+
+# A solver that cannot converge stops the run with a clear message, keeping the CSV written so far.
+add_test(NAME cli_solver_divergence_is_reported
+  COMMAND ${PM_EXE} run ${PM_EXAMPLE} -o ${PM_CLI_OUT}/diverged --quiet -pc_type jacobi -ksp_max_it 3)
+set_tests_properties(cli_solver_divergence_is_reported PROPERTIES
+  PASS_REGULAR_EXPRESSION "solver error: increment 1/4 .*diverged.*DIVERGED_ITS")

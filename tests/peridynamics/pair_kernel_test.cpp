@@ -72,7 +72,7 @@ Eigen::MatrixXd brute_force(const TestCell& E, const TestCell& F, bool same_cell
     for (int h = same_cell ? g + 1 : 0; h < F.count(); ++h) {
       const Vec3 xi = F.x[static_cast<std::size_t>(h)] - E.x[static_cast<std::size_t>(g)];
       const double r = xi.norm();
-      if (r == 0.0 || r >= c.horizon) continue;
+      if (r == 0.0 || r * r >= c.horizon * c.horizon * (1.0 - 1e-10)) continue;  // open horizon, ties left out
       if (crosses(E.x[static_cast<std::size_t>(g)], F.x[static_cast<std::size_t>(h)])) continue;
       const double abar =
           unit_alpha ? 1.0 : 0.5 * (E.alpha[static_cast<std::size_t>(g)] + F.alpha[static_cast<std::size_t>(h)]);
@@ -218,16 +218,17 @@ TEST(PeridynamicsPairKernel, UnitAlphaIsAlphaOneAndZeroAlphaBondsDrop) {
 }
 
 TEST(PeridynamicsPairKernel, BondsAtOrBeyondTheHorizonAreLeftOut) {
-  // Two single-point "cells" whose points are exactly 1 apart: a bond for δ > 1, none for δ ≤ 1.
+  // Two single-point "cells" whose points are exactly 1 apart: a bond for δ > 1, none for δ ≤ 1;
+  // a distance within a relative 1e-10 of δ counts as a tie (exactly δ) and is left out.
   const TestCell E = bar(0.0, {0.0}, {1.0});  // x = 0.5
   const TestCell F = bar(1.0, {0.0}, {1.0});  // x = 1.5
   std::size_t n = 0;
-  for (double delta : {0.5, 1.0}) {
+  for (double delta : {0.5, 1.0, 1.0 + 1e-12}) {
     const Eigen::MatrixXd K = kernel_block<1>(E, F, false, make_kernel(KernelShape::constant, delta, 1, 1), {}, false, n);
     EXPECT_EQ(n, 0u) << delta;
     EXPECT_EQ(K.cwiseAbs().maxCoeff(), 0.0) << delta;
   }
-  const Eigen::MatrixXd K = kernel_block<1>(E, F, false, make_kernel(KernelShape::constant, 1.0 + 1e-12, 1, 1), {}, false, n);
+  const Eigen::MatrixXd K = kernel_block<1>(E, F, false, make_kernel(KernelShape::constant, 1.0 + 1e-9, 1, 1), {}, false, n);
   EXPECT_EQ(n, 1u);
   // One bond, e = +1, W = 0.3², c = 1, N = (½, ½) at both points: K = 0.09 · b bᵀ, b = (−½, −½, ½, ½).
   Eigen::VectorXd b(4);

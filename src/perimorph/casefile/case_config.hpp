@@ -139,6 +139,7 @@ struct OutputSpec {
 enum class KernelKind { constant, conical, exponential, gaussian };
 enum class Discretization { continuous, discontinuous, discontinuous_constant };
 enum class Coupling { morphing, partition };
+enum class CalibrationRule { continuum, discrete };
 
 /// [nonlocal]: the bond-based peridynamic model (THEORY §1, §2, §4). Its
 /// micromodulus is calibrated from the local isotropic material. Parsed by
@@ -154,6 +155,10 @@ struct NonlocalSpec {
   /// discontinuous_constant (DG degree 0: one node per element).
   Discretization discretization = Discretization::continuous;
   Coupling coupling = Coupling::morphing;
+  /// continuum: ĉ from the closed forms of THEORY §2; discrete: ĉ further
+  /// scaled so that the bulk tensor summed with the actual non-local
+  /// quadrature on the (structured) grid matches C₀ in the least-squares sense.
+  CalibrationRule calibration = CalibrationRule::continuum;
   SourceLocation where;
 };
 

@@ -33,6 +33,8 @@ const Options<Discretization> kDiscretizations{
     {"discontinuous", Discretization::discontinuous},
     {"discontinuous-constant", Discretization::discontinuous_constant}};
 const Options<Coupling> kCouplings{{"morphing", Coupling::morphing}, {"partition", Coupling::partition}};
+const Options<CalibrationRule> kCalibrations{{"continuum", CalibrationRule::continuum},
+                                             {"discrete", CalibrationRule::discrete}};
 const Options<AlphaShapeKind> kShapes{{"interval", AlphaShapeKind::interval},
                                       {"slab", AlphaShapeKind::slab},
                                       {"ball", AlphaShapeKind::ball},
@@ -238,7 +240,7 @@ AlphaRegionSpec read_alpha_region(const Table& t, int dim) {
 void read_nonlocal(const Table& root, CaseConfig& c) {
   const auto t = root.table("nonlocal");
   if (!t) return;
-  t->check_keys({"kernel", "horizon", "length", "quadrature", "discretization", "coupling"});
+  t->check_keys({"kernel", "horizon", "length", "quadrature", "discretization", "coupling", "calibration"});
   NonlocalSpec& n = c.nonlocal;
   n.enabled = true;
   n.where = t->where();
@@ -260,6 +262,7 @@ void read_nonlocal(const Table& root, CaseConfig& c) {
   if (auto v = t->get("quadrature")) n.quadrature = v->integer(1, 6);
   if (auto v = t->get("discretization")) n.discretization = choose(*v, kDiscretizations, "discretization");
   if (auto v = t->get("coupling")) n.coupling = choose(*v, kCouplings, "coupling");
+  if (auto v = t->get("calibration")) n.calibration = choose(*v, kCalibrations, "calibration");
 }
 
 // ------------------------------------------------------------ [alpha]

@@ -1,5 +1,7 @@
 #include "perimorph/driver/model.hpp"
 
+#include "perimorph/assembly/discrete_calibration.hpp"
+
 #include "perimorph/core/error.hpp"
 #include "perimorph/mesh/box.hpp"
 #include "perimorph/mesh/cut.hpp"
@@ -108,6 +110,17 @@ Model build_model(const casefile::CaseConfig& config) {
     nl.emplace();
     nl->kernel = make_kernel(config.nonlocal);
     nl->calibration = peridynamics::calibrate_isotropic(nl->kernel, dim, config.model.plane, mat.E);
+    const Eigen::MatrixXd C0 = fem::reduce_stiffness(material_stiffness(mat), dim, config.model.plane);
+    if (config.nonlocal.calibration == casefile::CalibrationRule::discrete) {
+      if (!m.structure)
+        throw InputError(fmt::format("{}: calibration = \"discrete\" needs a structured box mesh",
+                                     config.nonlocal.where.describe()));
+      nl->kernel.scale = nl->calibration.scale;
+      nl->discrete_factor =
+          assembly::discrete_calibration_factor(*m.structure, dim, config.nonlocal.quadrature, nl->kernel, C0);
+      nl->calibration.scale *= nl->discrete_factor;
+      nl->calibration.gc_factor *= nl->discrete_factor;
+    }
     nl->kernel.scale = nl->calibration.scale / scale;  // bond weights W = t² w w carry t twice
     nl->alpha = make_alpha_field(config);
     nl->points = bonds::make_nonlocal_points(m, config.nonlocal.quadrature, scale, nl->alpha);
@@ -115,7 +128,6 @@ Model build_model(const casefile::CaseConfig& config) {
     nl->graph = bonds::find_cell_neighbors(m, nl->kernel.horizon, [&](Index e, Index f) {
       return amax[static_cast<std::size_t>(e)] > 0.0 || amax[static_cast<std::size_t>(f)] > 0.0;
     });
-    const Eigen::MatrixXd C0 = fem::reduce_stiffness(material_stiffness(mat), dim, config.model.plane);
     nl->morph = assembly::morph_stiffness(
         m, rule, nl->points, nl->graph, nl->kernel, nl->alpha, C0,
         config.nonlocal.coupling == casefile::Coupling::partition ? assembly::CouplingRule::partition

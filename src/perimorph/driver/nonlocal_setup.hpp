@@ -14,7 +14,8 @@ namespace perimorph::driver {
 
 struct NonlocalModel {
   peridynamics::Micromodulus kernel;
-  peridynamics::Calibration calibration;
+  peridynamics::Calibration calibration;  ///< scale includes discrete_factor
+  double discrete_factor = 1.0;           ///< discrete calibration factor (1: continuum calibration)
   alpha::AlphaField alpha = alpha::AlphaField::constant(0.0);
   bonds::NonlocalPoints points;
   bonds::CellGraph graph;
