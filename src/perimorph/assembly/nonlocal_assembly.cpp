@@ -1,14 +1,18 @@
 #include "perimorph/assembly/nonlocal_assembly.hpp"
 
+#include "perimorph/alpha/alpha_field.hpp"
 #include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/bonds/nonlocal_points.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/dofs/dof_map.hpp"
+#include "perimorph/fem/quadrature.hpp"
+#include "perimorph/fem/shape.hpp"
 #include "perimorph/mesh/mesh.hpp"
 #include "perimorph/peridynamics/pair_kernel.hpp"
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
 #include <vector>
 
@@ -40,33 +44,105 @@ std::vector<char> cells_near_cuts(const mesh::Mesh& mesh, double horizon) {
   return near;
 }
 
+constexpr int max_points = 216;
+
+/// One cell's quadrature points, recomputed (the plain version); lives on the
+/// stack of the thread that computes the pair.
+struct PointBuffer {
+  std::array<Vec3, max_points> x;
+  std::array<double, max_points> weight, alpha;
+};
+
+/// The points of cell c, with the formulas of make_nonlocal_points (same
+/// expressions, same order, so the values are bit-identical to the stored ones).
+template <int D>
+void recompute_points(const mesh::Mesh& mesh, Index c, const std::vector<fem::QuadraturePoint>& rule, double scale,
+                      const alpha::AlphaField& alpha, PointBuffer& out) {
+  constexpr int nn = fem::q1_nodes<D>;
+  fem::NodeCoords<D> X;
+  const auto nodes = mesh.cell(c);
+  for (int a = 0; a < nn; ++a) X.col(a) = mesh.node(nodes[static_cast<std::size_t>(a)]).template head<D>();
+  fem::ShapeGradients<D> g;
+  for (std::size_t q = 0; q < rule.size(); ++q) {
+    const double detJ = fem::q1_physical_gradients<D>(X, rule[q].xi, g);
+    Vec3 x = Vec3::Zero();
+    x.template head<D>() = X * fem::q1_values<D>(rule[q].xi);
+    out.x[q] = x;
+    out.weight[q] = rule[q].weight * detJ * scale;
+    out.alpha[q] = alpha(x);
+  }
+}
+
+/// Points per direction of a tensor rule with `per_cell` points in D dimensions.
+int points_per_direction(int per_cell, int dim) {
+  const int n = static_cast<int>(std::lround(std::pow(static_cast<double>(per_cell), 1.0 / dim)));
+  int total = 1;
+  for (int d = 0; d < dim; ++d) total *= n;
+  PERIMORPH_ASSERT(total == per_cell, "non-local points are not a tensor Gauss-Legendre rule");
+  return n;
+}
+
 template <int D>
 NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const NonlocalOptions& options) {
   const auto& pts = s.points;
-  PERIMORPH_ASSERT(pts.per_cell <= 216, "at most 6 non-local quadrature points per direction");
+  PERIMORPH_ASSERT(pts.per_cell <= max_points, "at most 6 non-local quadrature points per direction");
   const Index ncells = s.mesh.num_cells();
   const std::vector<char> near_cut = cells_near_cuts(s.mesh, s.kernel.horizon);
   const std::vector<double> ones(static_cast<std::size_t>(pts.per_cell), 1.0);
-  auto cell_points = [&](Index c) {
+  auto cell_shape = [&](Index c) {
     peridynamics::CellPoints p;
+    p.count = pts.per_cell;
+    p.nodes = static_cast<int>(s.dofmap.cell_nodes(c).size());
+    p.shape = p.nodes == 1 ? ones.data() : pts.shape.data();
+    return p;
+  };
+  auto cell_points = [&](Index c) {
+    peridynamics::CellPoints p = cell_shape(c);
     const std::size_t k = pts.index(c, 0);
     p.x = pts.x.data() + k;
     p.weight = pts.weight.data() + k;
     p.alpha = pts.alpha.data() + k;
-    p.count = pts.per_cell;
-    p.nodes = static_cast<int>(s.dofmap.cell_nodes(c).size());
-    p.shape = p.nodes == 1 ? ones.data() : pts.shape.data();
     return p;
   };
   auto unit_pair = [&](Index e, Index f) {
     return pts.cell_alpha_min[static_cast<std::size_t>(e)] >= 1.0 && pts.cell_alpha_min[static_cast<std::size_t>(f)] >= 1.0;
   };
   auto near = [&](Index e, Index f) { return near_cut[static_cast<std::size_t>(e)] && near_cut[static_cast<std::size_t>(f)]; };
+  // The plain version: points recomputed per pair from the mesh, the rule and α.
+  const bool plain = !options.precomputed_points;
+  std::vector<fem::QuadraturePoint> rule;
+  if (plain) {
+    PERIMORPH_ASSERT(s.alpha != nullptr, "precomputed_points = false needs NonlocalSpace::alpha");
+    rule = fem::gauss_legendre(D, points_per_direction(pts.per_cell, D));
+    // The space must describe the stored points (same α field, same scale):
+    // check the first cell against them where they exist.
+    if (ncells > 0 && !pts.weight.empty()) {
+      PointBuffer b;
+      recompute_points<D>(s.mesh, 0, rule, s.scale, *s.alpha, b);
+      for (int q = 0; q < pts.per_cell; ++q) {
+        const std::size_t k = pts.index(0, q);
+        PERIMORPH_ASSERT(b.x[static_cast<std::size_t>(q)] == pts.x[k] && b.weight[static_cast<std::size_t>(q)] == pts.weight[k] &&
+                             b.alpha[static_cast<std::size_t>(q)] == pts.alpha[k],
+                         "precomputed_points = false: NonlocalSpace::alpha or scale differ from those of the points");
+      }
+    }
+  }
   auto compute = [&](Index e, Index f, double* block) {
     const bool unit = options.unit_alpha_shortcut && unit_pair(e, f);
-    return peridynamics::pair_stiffness<D>(cell_points(e), cell_points(f), e == f, s.kernel,
-                                           near(e, f) ? std::span<const mesh::Cut>(s.mesh.cuts) : std::span<const mesh::Cut>{},
-                                           unit, block);
+    const auto cuts = near(e, f) ? std::span<const mesh::Cut>(s.mesh.cuts) : std::span<const mesh::Cut>{};
+    if (!plain) return peridynamics::pair_stiffness<D>(cell_points(e), cell_points(f), e == f, s.kernel, cuts, unit, block);
+    PointBuffer be, bf;
+    auto recomputed = [&](Index c, PointBuffer& b) {
+      recompute_points<D>(s.mesh, c, rule, s.scale, *s.alpha, b);
+      peridynamics::CellPoints p = cell_shape(c);
+      p.x = b.x.data();
+      p.weight = b.weight.data();
+      p.alpha = b.alpha.data();
+      return p;
+    };
+    const peridynamics::CellPoints pe = recomputed(e, be);
+    const peridynamics::CellPoints pf = e == f ? pe : recomputed(f, bf);
+    return peridynamics::pair_stiffness<D>(pe, pf, e == f, s.kernel, cuts, unit, block);
   };
   const std::size_t max_block = static_cast<std::size_t>(2 * peridynamics::max_cell_nodes * D) *
                                 static_cast<std::size_t>(2 * peridynamics::max_cell_nodes * D);

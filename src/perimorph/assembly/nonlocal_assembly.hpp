@@ -15,6 +15,9 @@ class Mesh;
 namespace perimorph::dofs {
 class DofMap;
 }
+namespace perimorph::alpha {
+class AlphaField;
+}
 namespace perimorph::bonds {
 struct NonlocalPoints;
 struct CellGraph;
@@ -28,6 +31,12 @@ struct NonlocalSpace {
   const bonds::NonlocalPoints& points;
   const bonds::CellGraph& graph;
   const peridynamics::Micromodulus& kernel;
+  /// The α field the points were made with. Read only when
+  /// NonlocalOptions::precomputed_points is false (then required).
+  const alpha::AlphaField* alpha = nullptr;
+  /// The factor make_nonlocal_points applied to every weight (thickness in 2D,
+  /// cross-section in 1D, 1 in 3D). Read only when precomputed_points is false.
+  double scale = 1.0;
 };
 
 struct NonlocalStats {
@@ -40,6 +49,15 @@ struct NonlocalStats {
 /// Switches for the structural optimizations (all on by default; the P1
 /// benchmark measures each against the plain version).
 struct NonlocalOptions {
+  /// Read the quadrature points' positions, weights and α from
+  /// NonlocalSpace::points. When false (the "plain" version), every cell pair
+  /// recomputes both cells' points from the mesh nodes, the reference
+  /// Gauss–Legendre rule and NonlocalSpace::alpha into thread-local buffers,
+  /// with the same formulas in the same order as make_nonlocal_points, so the
+  /// matrix is bit-identical. Still read from `points` in both cases: the
+  /// point count, the reference shape table and the per-cell α bounds (which
+  /// pairs are skipped, which are unit pairs).
+  bool precomputed_points = true;
   /// Pairs with α ≡ 1 on both cells use ᾱ = 1 without reading α.
   bool unit_alpha_shortcut = true;
   /// On a structured grid, pairs with α ≡ 1 on both cells, away from cuts,
