@@ -48,7 +48,8 @@ inline bool bond_cut(const Vec3& a, const Vec3& b, std::span<const mesh::Cut> cu
 
 /// Writes the block of the pair (E, F) into `block`, row-major, dofs ordered
 /// node-major: [E's nodes × D, F's nodes × D] (only E's when same_cell).
-/// `unit_alpha`: every α is 1 (ᾱ = 1, α not read). Returns the number of bonds.
+/// `unit_alpha`: every α is 1 (ᾱ = 1, α not read). Requires count ≤ 216 and
+/// nodes ≤ max_cell_nodes. Returns the number of bonds.
 template <int D>
 std::size_t pair_stiffness(const CellPoints& E, const CellPoints& F, bool same_cell, const Micromodulus& c,
                            std::span<const mesh::Cut> cuts, bool unit_alpha, double* block) {
@@ -62,8 +63,7 @@ std::size_t pair_stiffness(const CellPoints& E, const CellPoints& F, bool same_c
   auto at = [&](int row_node, int i, int col_node, int j) -> double& {
     return block[(row_node * D + i) * n + col_node * D + j];
   };
-  // S_h accumulates in FF directly at the end of each g? No: S_h depends on all g;
-  // store S per point of F (at most 216 points).
+  // S_h depends on every g, so it is kept per point of F (at most 6³ points).
   constexpr int max_points = 216;
   std::array<double, max_points * D * D> S{};
   if (!same_cell)
@@ -111,8 +111,9 @@ std::size_t pair_stiffness(const CellPoints& E, const CellPoints& F, bool same_c
           for (int j = 0; j < D; ++j) at(a, i, offF + b, j) -= Ng[a] * U[static_cast<std::size_t>(b * D * D + i * D + j)];
   }
   if (same_cell) {
-    // The cross term was added for ordered (g, h); symmetrize: K_EE(cross) = −Σ_g N_g ⊗ U_g is
-    // already symmetric as a whole because k, G are symmetric in (g, h).
+    // Ordered pairs (g, h), h ≠ g, with the full k: for E = F the unordered sum
+    // ½ Σ_{g≠h} k (N_h − N_g)(N_h − N_g)ᵀ ⊗ G equals Σ_g N_g N_gᵀ ⊗ T_g − Σ_g N_g ⊗ U_g,
+    // by the symmetry of k and G in (g, h). Each unordered bond was visited twice.
     return bonds / 2;
   }
   for (int h = 0; h < F.count; ++h) {
