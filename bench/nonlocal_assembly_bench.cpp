@@ -4,18 +4,23 @@
 // per cell, CG or DG (degree 1: every cell owns its 8 nodes; α ≡ 1 makes every
 // cell purely non-local, which is where the program uses DG).
 //
-//   assemble/N/n/dg    assemble_nonlocal with the default options (all the
-//                      structural optimizations on), dg = 0 CG, 1 DG
-//   study/N/n/stage    CG, the optimizations switched on one by one:
-//                      stage 0 plain (precomputed_points, unit_alpha_shortcut
-//                      and translation_cache off), 1 + precomputed points,
-//                      2 + α-free unit pairs, 3 + translation cache (= default)
+//   assemble/N/q/dg              assemble_nonlocal with the default options (all
+//                                the structural optimizations on); dg = 0 CG, 1 DG
+//   study/N/q/stage/discard      CG, the optimizations switched on one by one:
+//                                stage 0 plain (precomputed_points,
+//                                unit_alpha_shortcut and translation_cache off),
+//                                1 + precomputed points, 2 + α-free unit pairs,
+//                                3 + translation cache (= the default);
+//                                discard = 0 into the matrix, 1 into an inserter
+//                                that drops the blocks (the element matrices
+//                                alone, the thesis' measure)
 //
 // Timed: assemble_nonlocal into a la::Matrix made from build_sparsity with the
-// cell graph (exact preallocation), then finalize; before each repetition the
-// matrix is zeroed (not timed). Set-up (mesh, points, cell graph, pattern,
-// matrix) is not timed. Counters (means over the repetitions where timed):
+// cell graph (exact preallocation), then finalize; the matrix is zeroed before
+// each repetition (not timed). Set-up (mesh, points, cell graph, pattern,
+// matrix) is not timed. Counters (means over the repetitions):
 //   assemble_s, finalize_s   wall seconds of the two parts
+//   matrix_create_s          build_sparsity + la::Matrix (once, not timed)
 //   bonds, cell_pairs, distinct_blocks, reused_pairs   NonlocalStats
 //   bonds_per_s              bonds / assemble_s (with the cache, bonds of reused
 //                            pairs count without being recomputed)
@@ -27,15 +32,20 @@
 //                            unit: 1 core-hour per million cells = 3.6 ms)
 //   peak_rss_mb, rss_reset   as in local_elasticity_bench.cpp: ru_maxrss after
 //                            the benchmark with the peak reset before it
+//   est_matrix_gb, est_seconds   the estimates below
 // A configuration whose matrix is estimated (before anything large is built)
 // above PERIMORPH_BENCH_MAX_GB (default 10, capped at 60 % of MemAvailable) or
 // whose time is estimated above PERIMORPH_BENCH_MAX_S (default 180) is skipped
 // with the message "not run: estimated ...". DG nnz is exact from the cell graph
 // (576 per directed cell pair); CG nnz is exact from the pattern.
+// PERIMORPH_BENCH_MAX_S=0 gives the estimates of every configuration and runs
+// nothing.
 //
-// Before any timing, main() checks that the plain version gives the same matrix
-// as the precomputed one, bit for bit, and measures how far the translation
-// cache moves it; the results go to the JSON context (check_*) and stdout.
+// Before any timing (unless PERIMORPH_BENCH_NO_CHECK is set), main() checks
+// that the plain version gives the same matrix as the precomputed one, bit for
+// bit, and measures how far the translation cache moves it, through a CSR
+// accumulator over the same pattern; the results go to the JSON context
+// (check_*) and stdout.
 //
 // Run: bench/run_nonlocal_bench.sh. Arguments after the benchmark's own go to PETSc.
 
@@ -54,7 +64,6 @@
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 #include <omp.h>
-#include <petscmat.h>
 
 #include <sys/resource.h>
 
@@ -67,6 +76,8 @@
 #include <fstream>
 #include <memory>
 #include <optional>
+#include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -165,13 +176,16 @@ struct Estimate {
   double gb() const { return nnz * kBytesPerNonzero / 1e9; }
 };
 
-// Cost model (seconds per unit), from the N = 10 runs on the 2-core EPYC, busy
-// machine; deliberately pessimistic. Only used to skip configurations.
-constexpr double kSecondsPerInsertedValue = 8e-9;
-constexpr double kSecondsPerNonzero = 30e-9;  // pattern, matrix creation with explicit zeros, zeroing
-constexpr double kSecondsPerBond = 60e-9;     // one thread
+// Cost model (seconds per unit), measured at N = 10 on the 2-core EPYC while
+// another engineer's runs used about one core; only used to skip
+// configurations. MatSetValues dominates: ~39 ns per added value in CG rows
+// (~1,800 columns), ~83 ns in DG rows (~7,000 columns).
+constexpr double kSecondsPerInsertedValueCG = 40e-9;
+constexpr double kSecondsPerInsertedValueDG = 90e-9;
+constexpr double kSecondsPerNonzero = 30e-9;  // pattern, matrix creation with explicit zeros
+constexpr double kSecondsPerBond = 150e-9;    // one thread
 
-Estimate estimate(const Problem& p, int q, bool dg, const assembly::NonlocalOptions& o,
+Estimate estimate(const Problem& p, int q, bool dg, const assembly::NonlocalOptions& o, bool into_matrix,
                   const assembly::SparsityPattern* pattern) {
   Estimate e;
   const double block = 8.0 * kDim;  // dofs per cell (CG and DG degree 1)
@@ -182,24 +196,25 @@ Estimate estimate(const Problem& p, int q, bool dg, const assembly::NonlocalOpti
     e.nnz = block * block * static_cast<double>(p.graph.neighbors.size());
   else
     e.nnz = static_cast<double>(pattern->columns.size()) * kDim * kDim;
-  e.inserted = pairs * 4.0 * block * block;
+  e.inserted = into_matrix ? pairs * 4.0 * block * block : 0.0;
   // Bonds per point: the points within δ = 3h at q³ points per h³.
   const double per_point = 4.0 / 3.0 * M_PI * 27.0 * q * q * q;
   const double points = static_cast<double>(p.mesh.num_cells()) * q * q * q;
   const double cached = o.translation_cache ? 0.0 : 1.0;
   e.bonds = cached * 0.5 * points * per_point;
   const double threads = static_cast<double>(omp_get_max_threads());
-  e.seconds = e.inserted * kSecondsPerInsertedValue + e.nnz * kSecondsPerNonzero + e.bonds * kSecondsPerBond / threads;
+  e.seconds = e.inserted * (dg ? kSecondsPerInsertedValueDG : kSecondsPerInsertedValueCG) +
+              (into_matrix ? e.nnz * kSecondsPerNonzero : 0.0) + e.bonds * kSecondsPerBond / threads;
   return e;
 }
 
 /// Skips the benchmark if the estimate is over the limits; returns true if skipped.
-bool skip_if_too_big(benchmark::State& state, const Estimate& e) {
+bool skip_if_too_big(benchmark::State& state, const Estimate& e, bool into_matrix) {
   const double limit_gb = memory_limit_gb();
   const double limit_s = env_double("PERIMORPH_BENCH_MAX_S", 180.0);
   state.counters["est_matrix_gb"] = e.gb();
   state.counters["est_seconds"] = e.seconds;
-  if (e.gb() > limit_gb) {
+  if (into_matrix && e.gb() > limit_gb) {
     state.SkipWithError(fmt::format("not run: estimated {:.1f} GB of matrix ({:.3g} non-zeros) > limit {:.1f} GB",
                                     e.gb(), e.nnz, limit_gb)
                             .c_str());
@@ -214,55 +229,81 @@ bool skip_if_too_big(benchmark::State& state, const Estimate& e) {
   return false;
 }
 
-void run(benchmark::State& state, Index n, int q, bool dg, const assembly::NonlocalOptions& options) {
+/// Discards the blocks (keeps one value so the work is not optimized away):
+/// the element matrices alone, the thesis' measure.
+class DiscardInserter final : public assembly::MatrixInserter {
+public:
+  void add(std::span<const Index>, std::span<const Index>, std::span<const double> values) override {
+    if (!values.empty()) sum_ += values[0];
+  }
+  double sum() const { return sum_; }
+
+private:
+  double sum_ = 0.0;
+};
+
+enum class Sink { matrix, discard };
+
+void run(benchmark::State& state, Index n, int q, bool dg, const assembly::NonlocalOptions& options, Sink sink) {
+  using clock = std::chrono::steady_clock;
+  auto since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
   const bool reset = reset_peak_rss();
+  const bool into_matrix = sink == Sink::matrix;
   const Problem p(n, q, dg, alpha::AlphaField::constant(1.0));
+  auto t = clock::now();
   std::optional<assembly::SparsityPattern> pattern;
   if (!dg) pattern = assembly::build_sparsity(p.dofmap, &p.graph);
-  const Estimate est = estimate(p, q, dg, options, pattern ? &*pattern : nullptr);
-  if (skip_if_too_big(state, est)) {
-    state.counters["cells"] = static_cast<double>(p.mesh.num_cells());
-    state.counters["dofs"] = static_cast<double>(p.dofmap.num_dofs());
+  const Estimate est = estimate(p, q, dg, options, into_matrix, pattern ? &*pattern : nullptr);
+  state.counters["cells"] = static_cast<double>(p.mesh.num_cells());
+  state.counters["dofs"] = static_cast<double>(p.dofmap.num_dofs());
+  state.counters["graph_pairs"] = static_cast<double>(p.graph.num_pairs());
+  if (skip_if_too_big(state, est, into_matrix)) {
     state.counters["nnz"] = est.nnz;
     for (auto _ : state) {
     }
     return;
   }
-  if (!pattern) pattern = assembly::build_sparsity(p.dofmap, &p.graph);
-  la::Matrix K(*pattern);
+  std::optional<la::Matrix> K;
+  DiscardInserter discard;
+  if (into_matrix) {
+    if (!pattern) pattern = assembly::build_sparsity(p.dofmap, &p.graph);
+    K.emplace(*pattern);
+    state.counters["matrix_create_s"] = since(t);
+  }
   pattern.reset();
+  assembly::MatrixInserter& sink_ref = K ? static_cast<assembly::MatrixInserter&>(*K) : discard;
 
-  using clock = std::chrono::steady_clock;
-  auto since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
   assembly::NonlocalStats stats;
   double assemble_s = 0.0, finalize_s = 0.0;
   int reps = 0;
   for (auto _ : state) {
-    state.PauseTiming();
-    K.zero_entries();
-    state.ResumeTiming();
-    auto t = clock::now();
-    stats = assembly::assemble_nonlocal(p.space(), K, options);
+    if (K) {
+      state.PauseTiming();
+      K->zero_entries();
+      state.ResumeTiming();
+    }
+    t = clock::now();
+    stats = assembly::assemble_nonlocal(p.space(), sink_ref, options);
     assemble_s += since(t);
     t = clock::now();
-    K.finalize();
+    if (K) K->finalize();
     finalize_s += since(t);
     ++reps;
   }
+  benchmark::DoNotOptimize(discard.sum());
   assemble_s /= reps;
   finalize_s /= reps;
   const double threads = static_cast<double>(omp_get_max_threads());
   const double cells = static_cast<double>(p.mesh.num_cells());
-  state.counters["cells"] = cells;
-  state.counters["dofs"] = static_cast<double>(p.dofmap.num_dofs());
-  state.counters["nnz"] = K.nonzeros();
-  state.counters["matrix_gb"] = K.nonzeros() * kBytesPerNonzero / 1e9;
+  if (K) {
+    state.counters["nnz"] = K->nonzeros();
+    state.counters["matrix_gb"] = K->nonzeros() * kBytesPerNonzero / 1e9;
+  }
   state.counters["assemble_s"] = assemble_s;
   state.counters["finalize_s"] = finalize_s;
   state.counters["bonds"] = static_cast<double>(stats.bonds);
   state.counters["bonds_per_s"] = static_cast<double>(stats.bonds) / assemble_s;
   state.counters["cell_pairs"] = static_cast<double>(stats.cell_pairs);
-  state.counters["graph_pairs"] = static_cast<double>(p.graph.num_pairs());
   state.counters["distinct_blocks"] = static_cast<double>(stats.distinct_blocks);
   state.counters["reused_pairs"] = static_cast<double>(stats.reused_pairs);
   state.counters["threads"] = threads;
@@ -272,26 +313,51 @@ void run(benchmark::State& state, Index n, int q, bool dg, const assembly::Nonlo
 }
 
 void assemble(benchmark::State& state) {
-  run(state, static_cast<Index>(state.range(0)), static_cast<int>(state.range(1)), state.range(2) != 0, {});
+  run(state, static_cast<Index>(state.range(0)), static_cast<int>(state.range(1)), state.range(2) != 0, {},
+      Sink::matrix);
 }
 
 void study(benchmark::State& state) {
   run(state, static_cast<Index>(state.range(0)), static_cast<int>(state.range(1)), false,
-      stage_options(static_cast<int>(state.range(2))));
+      stage_options(static_cast<int>(state.range(2))), state.range(3) != 0 ? Sink::discard : Sink::matrix);
 }
 
 // ---------------------------------------------------------------------------
 // Checks before timing: the plain version against the precomputed one.
 
-/// Values of a finalized matrix (same pattern for every matrix of one Problem).
-std::vector<double> values(const la::Matrix& K) {
-  const PetscScalar* a = nullptr;
-  MatSeqAIJGetArrayRead(K.handle(), &a);
-  const auto n = static_cast<std::size_t>(K.nonzeros());
-  std::vector<double> v(a, a + n);
-  MatSeqAIJRestoreArrayRead(K.handle(), &a);
-  return v;
-}
+/// A MatrixInserter that sums into plain CSR storage over a sparsity pattern,
+/// entry by entry in the order of the add() calls, as PETSc's ADD_VALUES does.
+class CsrInserter final : public assembly::MatrixInserter {
+public:
+  explicit CsrInserter(assembly::SparsityPattern pattern) : p_(std::move(pattern)) {
+    const auto bs = static_cast<std::size_t>(p_.block_size);
+    values_.assign(p_.columns.size() * bs * bs, 0.0);
+  }
+  void add(std::span<const Index> rows, std::span<const Index> cols, std::span<const double> v) override {
+    const Index bs = p_.block_size;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      if (rows[i] < 0) continue;
+      const Index br = rows[i] / bs, k = rows[i] % bs;
+      const auto row = p_.row(br);
+      const std::size_t start = static_cast<std::size_t>(p_.row_offsets[static_cast<std::size_t>(br)]) *
+                                    static_cast<std::size_t>(bs * bs) +
+                                static_cast<std::size_t>(k) * row.size() * static_cast<std::size_t>(bs);
+      for (std::size_t j = 0; j < cols.size(); ++j) {
+        if (cols[j] < 0) continue;
+        const auto it = std::lower_bound(row.begin(), row.end(), cols[j] / bs);
+        if (it == row.end() || *it != cols[j] / bs) throw std::runtime_error("CsrInserter: entry outside the pattern");
+        const auto pos = static_cast<std::size_t>(it - row.begin());
+        values_[start + pos * static_cast<std::size_t>(bs) + static_cast<std::size_t>(cols[j] % bs)] +=
+            v[i * cols.size() + j];
+      }
+    }
+  }
+  std::vector<double>& values() { return values_; }
+
+private:
+  assembly::SparsityPattern p_;
+  std::vector<double> values_;
+};
 
 struct Assembled {
   std::vector<double> v;
@@ -299,11 +365,10 @@ struct Assembled {
 };
 
 Assembled assemble_values(const Problem& p, const assembly::NonlocalOptions& o) {
-  la::Matrix K(assembly::build_sparsity(p.dofmap, &p.graph));
+  CsrInserter K(assembly::build_sparsity(p.dofmap, &p.graph));
   Assembled a;
   a.stats = assembly::assemble_nonlocal(p.space(), K, o);
-  K.finalize();
-  a.v = values(K);
+  a.v = std::move(K.values());
   return a;
 }
 
@@ -387,17 +452,18 @@ void register_all() {
             ->Unit(benchmark::kMillisecond)
             ->UseRealTime()
             ->MeasureProcessCPUTime()
-            ->Iterations(n <= 10 ? 3 : 1);
+            ->Iterations(1);
   for (int n : {10, 16})
     for (int q : {3, 4})
-      for (int stage = 0; stage < 4; ++stage)
-        benchmark::RegisterBenchmark("study", study)
-            ->Args({n, q, stage})
-            ->ArgNames({"N", "q", "stage"})
-            ->Unit(benchmark::kMillisecond)
-            ->UseRealTime()
-            ->MeasureProcessCPUTime()
-            ->Iterations(1);
+      for (int discard : {0, 1})
+        for (int stage = 0; stage < 4; ++stage)
+          benchmark::RegisterBenchmark("study", study)
+              ->Args({n, q, stage, discard})
+              ->ArgNames({"N", "q", "stage", "discard"})
+              ->Unit(benchmark::kMillisecond)
+              ->UseRealTime()
+              ->MeasureProcessCPUTime()
+              ->Iterations(1);
 }
 
 }  // namespace

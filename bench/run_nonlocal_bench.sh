@@ -6,21 +6,36 @@
 #   BUILD_DIR=/path bench/run_nonlocal_bench.sh
 #
 # Results, in bench/results/:
+#   nonlocal_estimates.json  every assemble/N/q/dg configuration, estimated
+#                            only (PERIMORPH_BENCH_MAX_S=0: matrix size and
+#                            time, nothing assembled), for the "not run" rows
 #   nonlocal_assembly.json   the checks (plain vs precomputed, JSON context
-#                            check_*) and the assemble/N/q/dg table
-#   nonlocal_study.json      the optimization study study/N/q/stage
+#                            check_*) and the assemble/N/q/dg runs
+#   nonlocal_study.json      the optimization study study/N/q/stage/discard
 #   nonlocal_*.log           the programs' output
 #   nonlocal_bench.status    load averages before and after, elapsed seconds
-# Each process runs under a time limit (NONLOCAL_LIMIT seconds, 900); the
-# benchmark itself skips configurations estimated above PERIMORPH_BENCH_MAX_GB
-# (10) of matrix or PERIMORPH_BENCH_MAX_S (180) seconds and says so.
+#
+# Which configurations run: ASSEMBLE_FILTER and STUDY_FILTER (regular
+# expressions on the benchmark names). The defaults are the selection that fits
+# ~15 minutes on the 2-core machine shared with other work; FULL=1 runs every
+# configuration within the benchmark's own limits (~45 minutes there). The
+# benchmark skips configurations estimated above PERIMORPH_BENCH_MAX_GB (10) of
+# matrix or PERIMORPH_BENCH_MAX_S (180) seconds and says so. Each process runs
+# under a time limit (NONLOCAL_LIMIT seconds, 1200).
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD_DIR="${BUILD_DIR:-$ROOT/build-bench}"
 RESULTS="$ROOT/bench/results"
 BIN="$BUILD_DIR/bench/nonlocal_assembly_bench"
-LIMIT="${NONLOCAL_LIMIT:-900}"
+LIMIT="${NONLOCAL_LIMIT:-1200}"
+if [[ "${FULL:-0}" == 1 ]]; then
+  ASSEMBLE_FILTER="${ASSEMBLE_FILTER:-^assemble/}"
+  STUDY_FILTER="${STUDY_FILTER:-^study/}"
+else
+  ASSEMBLE_FILTER="${ASSEMBLE_FILTER:-^assemble/(N:10/|N:16/q:4/|N:24/q:4/)}"
+  STUDY_FILTER="${STUDY_FILTER:-^study/(N:10/|N:16/q:3/.*discard:1)}"
+fi
 export OMP_NUM_THREADS="${OMP_NUM_THREADS:-2}"
 
 if [[ ! -f "$BUILD_DIR/build.ninja" ]]; then
@@ -35,6 +50,8 @@ start=$SECONDS
   echo "date=$(date -u +%Y-%m-%dT%H:%M:%SZ)"
   echo "load_before=$(cut -d' ' -f1-3 /proc/loadavg)"
   echo "omp_num_threads=$OMP_NUM_THREADS"
+  echo "assemble_filter=$ASSEMBLE_FILTER"
+  echo "study_filter=$STUDY_FILTER"
 } >"$status"
 
 run() {  # name filter [extra env]
@@ -49,8 +66,9 @@ run() {  # name filter [extra env]
   echo "${name}_load_after=$(cut -d' ' -f1-3 /proc/loadavg)" >>"$status"
 }
 
-run nonlocal_assembly '^assemble/'
-run nonlocal_study '^study/' PERIMORPH_BENCH_NO_CHECK=1
+run nonlocal_estimates '^assemble/' PERIMORPH_BENCH_NO_CHECK=1 PERIMORPH_BENCH_MAX_S=0
+run nonlocal_assembly "$ASSEMBLE_FILTER"
+run nonlocal_study "$STUDY_FILTER" PERIMORPH_BENCH_NO_CHECK=1
 
 echo "elapsed_s=$((SECONDS - start))" >>"$status"
 echo "load_after=$(cut -d' ' -f1-3 /proc/loadavg)" >>"$status"
