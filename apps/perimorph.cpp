@@ -13,8 +13,8 @@
 #include "perimorph/driver/static_run.hpp"
 #include "perimorph/la/petsc_session.hpp"
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <filesystem>
@@ -27,34 +27,41 @@ namespace {
 int check(const std::string& path) {
   const auto config = perimorph::casefile::parse_case_file(path);
   const auto model = perimorph::driver::build_model(config);
-  fmt::print("{}: OK — {}D, {} cells, {} nodes, {} dofs, {} material(s), {} increment(s)\n", path, model.dim(),
-             model.mesh.num_cells(), model.mesh.num_nodes(), model.dofmap.num_dofs(), config.materials.size(),
-             config.loading.factors.size());
+  fmt::print("{}: OK — {}D, {} cells, {} nodes, {} dofs, {} material(s), {} increment(s)\n", path,
+             model.dim(), model.mesh.num_cells(), model.mesh.num_nodes(), model.dofmap.num_dofs(),
+             config.materials.size(), config.loading.factors.size());
   return 0;
 }
 
 /// A PETSc session with no options of its own (commands that assemble but do not solve).
-std::unique_ptr<perimorph::la::PetscSession> quiet_petsc() { return std::make_unique<perimorph::la::PetscSession>(); }
+std::unique_ptr<perimorph::la::PetscSession> quiet_petsc() {
+  return std::make_unique<perimorph::la::PetscSession>();
+}
 
 int info(const std::string& path) {
   const auto config = perimorph::casefile::parse_case_file(path);
   auto petsc = quiet_petsc();
   const auto model = perimorph::driver::build_model(config);
   fmt::print("case       {}\n", path);
-  fmt::print("mesh       {}D, {} cells, {} nodes; {} dof nodes, {} dofs\n", model.dim(), model.mesh.num_cells(),
-             model.mesh.num_nodes(), model.dofmap.num_nodes(), model.dofmap.num_dofs());
+  fmt::print("mesh       {}D, {} cells, {} nodes; {} dof nodes, {} dofs\n", model.dim(),
+             model.mesh.num_cells(), model.mesh.num_nodes(), model.dofmap.num_nodes(),
+             model.dofmap.num_dofs());
   if (!model.nonlocal) {
     fmt::print("model      local only (no [nonlocal] section)\n");
     return 0;
   }
   const auto& nl = *model.nonlocal;
   const auto& cal = nl.calibration;
-  fmt::print("kernel     {}, horizon delta = {}, length l = {}\n", perimorph::peridynamics::to_string(nl.kernel.shape),
-             nl.kernel.horizon, nl.kernel.length);
+  fmt::print("kernel     {}, horizon delta = {}, length l = {}\n",
+             perimorph::peridynamics::to_string(nl.kernel.shape), nl.kernel.horizon, nl.kernel.length);
   fmt::print("scale      c_hat = {:.6e}  (micromodulus c(r) = c_hat * phi(r)){}\n", cal.scale,
-             nl.discrete_factor != 1.0 ? fmt::format("; discrete calibration factor {:.8f}", nl.discrete_factor) : "");
-  if (model.dim() > 1) fmt::print("equivalent lambda = mu = {:.6e}, E = {:.6e}, nu = {:.6f}\n", cal.lame, cal.E, cal.nu);
-  else fmt::print("equivalent E = {:.6e}\n", cal.E);
+             nl.discrete_factor != 1.0
+                 ? fmt::format("; discrete calibration factor {:.8f}", nl.discrete_factor)
+                 : "");
+  if (model.dim() > 1)
+    fmt::print("equivalent lambda = mu = {:.6e}, E = {:.6e}, nu = {:.6f}\n", cal.lame, cal.E, cal.nu);
+  else
+    fmt::print("equivalent E = {:.6e}\n", cal.E);
   fmt::print("fracture   G_c = {:.6e} * s_crit^2  (bulk closed form, THEORY §5)\n", cal.gc_factor);
   perimorph::Index positive = 0, pure = 0;
   for (perimorph::Index c = 0; c < model.mesh.num_cells(); ++c) {
@@ -74,7 +81,9 @@ int ghost_forces(const std::string& path, const std::vector<double>& strain, con
   const std::size_t expected = dim == 1 ? 1 : dim == 2 ? 3 : 6;
   if (strain.size() != expected)
     throw perimorph::InputError(fmt::format("--strain needs {} values in {}D ({}); got {}", expected, dim,
-                                            dim == 1 ? "exx" : dim == 2 ? "exx,eyy,exy" : "exx,eyy,ezz,eyz,exz,exy",
+                                            dim == 1   ? "exx"
+                                            : dim == 2 ? "exx,eyy,exy"
+                                                       : "exx,eyy,ezz,eyz,exz,exy",
                                             strain.size()));
   perimorph::Mat3 eps = perimorph::Mat3::Zero();
   eps(0, 0) = strain[0];
@@ -92,14 +101,15 @@ int ghost_forces(const std::string& path, const std::vector<double>& strain, con
   const auto model = perimorph::driver::build_model(config);
   const auto g = perimorph::driver::compute_ghost_forces(model, eps);
   const std::string dir = perimorph::driver::resolve_output_directory(config, {out_dir, true});
-  const std::string base = config.output.basename.empty() ? std::filesystem::path(path).stem().string()
-                                                          : config.output.basename;
+  const std::string base =
+      config.output.basename.empty() ? std::filesystem::path(path).stem().string() : config.output.basename;
   const auto csv = perimorph::driver::write_ghost_forces(model, g, dir, base);
   fmt::print("max ghost-force density {:.6e}; wrote {}\n", g.max_density, csv);
   return 0;
 }
 
-int run(const std::string& path, const std::string& out_dir, bool quiet, std::vector<std::string> petsc_args) {
+int run(const std::string& path, const std::string& out_dir, bool quiet,
+        std::vector<std::string> petsc_args) {
   const auto config = perimorph::casefile::parse_case_file(path);
   // PETSc sees only the options meant for it (the program name first).
   std::vector<std::string> args{"perimorph"};
@@ -113,13 +123,14 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
   const auto model = perimorph::driver::build_model(config);
   const auto summary = perimorph::driver::run_static(model, {out_dir, quiet});
   if (!quiet) {
-    fmt::print("{}: {} increment(s), {} dofs; last solve {} + {}: {} iterations, relative residual {:.2e}\n", path,
-               summary.increments_done, model.dofmap.num_dofs(), summary.last_solve.ksp_type,
-               summary.last_solve.pc_type, summary.last_solve.iterations, summary.last_solve.relative_residual);
+    fmt::print("{}: {} increment(s), {} dofs; last solve {} + {}: {} iterations, relative residual {:.2e}\n",
+               path, summary.increments_done, model.dofmap.num_dofs(), summary.last_solve.ksp_type,
+               summary.last_solve.pc_type, summary.last_solve.iterations,
+               summary.last_solve.relative_residual);
     fmt::print("strain energy {:.6e}, external work {:.6e}\n", summary.strain_energy, summary.external_work);
     for (std::size_t k = 0; k < summary.reactions.size(); ++k)
-      fmt::print("reaction on '{}': ({:.6e}, {:.6e}, {:.6e})\n", summary.reaction_names[k], summary.reactions[k].x(),
-                 summary.reactions[k].y(), summary.reactions[k].z());
+      fmt::print("reaction on '{}': ({:.6e}, {:.6e}, {:.6e})\n", summary.reaction_names[k],
+                 summary.reactions[k].x(), summary.reactions[k].y(), summary.reactions[k].z());
     fmt::print("wrote {}{}\n", summary.csv_path, summary.pvd_path.empty() ? "" : " and " + summary.pvd_path);
   }
   return 0;
@@ -128,17 +139,20 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"perimorph — hybrid local/non-local (peridynamics) fracture simulator.\n"
-               "Case-file format: docs/case-file.md. PETSc options (e.g. -ksp_type preonly -pc_type cholesky) may\n"
-               "follow the case file of `run`; they override the case's [solver] petsc_options."};
+  CLI::App app{
+      "perimorph — hybrid local/non-local (peridynamics) fracture simulator.\n"
+      "Case-file format: docs/case-file.md. PETSc options (e.g. -ksp_type preonly -pc_type cholesky) may\n"
+      "follow the case file of `run`; they override the case's [solver] petsc_options."};
   app.require_subcommand(1);
 
   std::string case_path;
-  auto* check_cmd = app.add_subcommand("check", "Validate a case file (and build its mesh) without running it");
+  auto* check_cmd =
+      app.add_subcommand("check", "Validate a case file (and build its mesh) without running it");
   check_cmd->add_option("CASE", case_path, "Case file (TOML)")->required();
 
-  auto* info_cmd = app.add_subcommand("info", "Print the calibrated micromodulus (scale, equivalent lambda = mu, E, "
-                                               "nu, G_c factor) and the discretization figures of a case");
+  auto* info_cmd = app.add_subcommand("info",
+                                      "Print the calibrated micromodulus (scale, equivalent lambda = mu, E, "
+                                      "nu, G_c factor) and the discretization figures of a case");
   info_cmd->add_option("CASE", case_path, "Case file (TOML)")->required();
 
   std::string out_dir;
@@ -152,11 +166,14 @@ int main(int argc, char** argv) {
 
   std::vector<double> strain;
   auto* ghost_cmd = app.add_subcommand(
-      "ghost-forces", "Impose u = strain * x on every degree of freedom and write the residual (ghost forces) and its "
-                      "density per nodal volume, as VTU and CSV (THEORY §3.2)");
+      "ghost-forces",
+      "Impose u = strain * x on every degree of freedom and write the residual (ghost forces) and its "
+      "density per nodal volume, as VTU and CSV (THEORY §3.2)");
   ghost_cmd->add_option("CASE", case_path, "Case file (TOML)")->required();
-  ghost_cmd->add_option("--strain", strain, "Imposed strain: exx (1D); exx,eyy,exy (2D); exx,eyy,ezz,eyz,exz,exy "
-                                            "(3D), tensorial shear")
+  ghost_cmd
+      ->add_option("--strain", strain,
+                   "Imposed strain: exx (1D); exx,eyy,exy (2D); exx,eyy,ezz,eyz,exz,exy "
+                   "(3D), tensorial shear")
       ->required()
       ->delimiter(',');
   ghost_cmd->add_option("-o,--output", out_dir, "Output directory (default: the case's [output] directory)");

@@ -211,7 +211,9 @@ void solve(benchmark::State& state, Solver s) {
 }
 
 /// Few repetitions for the small cases, one for the large ones.
-int repetitions(int n) { return n <= 20 ? 5 : n <= 40 ? 2 : 1; }
+int repetitions(int n) {
+  return n <= 20 ? 5 : n <= 40 ? 2 : 1;
+}
 
 void register_all() {
   const std::vector<int> sizes{20, 40, 60};

@@ -119,7 +119,9 @@ double mem_available_gb() {
 }
 
 /// Matrix memory limit: PERIMORPH_BENCH_MAX_GB (10), at most 60 % of what is available now.
-double memory_limit_gb() { return std::min(env_double("PERIMORPH_BENCH_MAX_GB", 10.0), 0.6 * mem_available_gb()); }
+double memory_limit_gb() {
+  return std::min(env_double("PERIMORPH_BENCH_MAX_GB", 10.0), 0.6 * mem_available_gb());
+}
 
 std::vector<dofs::Continuity> continuity(Index cells, bool dg) {
   if (!dg) return {};
@@ -169,9 +171,9 @@ assembly::NonlocalOptions stage_options(int stage) {
 
 /// Size and cost estimates made before the matrix exists.
 struct Estimate {
-  double nnz = 0.0;        ///< exact (see the header)
-  double inserted = 0.0;   ///< matrix values added by the assembly (pairs × block size²)
-  double bonds = 0.0;      ///< point pairs computed (rough: all point pairs of computed cell pairs within δ)
+  double nnz = 0.0;       ///< exact (see the header)
+  double inserted = 0.0;  ///< matrix values added by the assembly (pairs × block size²)
+  double bonds = 0.0;     ///< point pairs computed (rough: all point pairs of computed cell pairs within δ)
   double seconds = 0.0;
   double gb() const { return nnz * kBytesPerNonzero / 1e9; }
 };
@@ -215,15 +217,16 @@ bool skip_if_too_big(benchmark::State& state, const Estimate& e, bool into_matri
   state.counters["est_matrix_gb"] = e.gb();
   state.counters["est_seconds"] = e.seconds;
   if (into_matrix && e.gb() > limit_gb) {
-    state.SkipWithError(fmt::format("not run: estimated {:.1f} GB of matrix ({:.3g} non-zeros) > limit {:.1f} GB",
-                                    e.gb(), e.nnz, limit_gb)
-                            .c_str());
+    state.SkipWithError(
+        fmt::format("not run: estimated {:.1f} GB of matrix ({:.3g} non-zeros) > limit {:.1f} GB", e.gb(),
+                    e.nnz, limit_gb)
+            .c_str());
     return true;
   }
   if (e.seconds > limit_s) {
-    state.SkipWithError(
-        fmt::format("not run: estimated {:.0f} s > limit {:.0f} s ({:.2f} GB of matrix)", e.seconds, limit_s, e.gb())
-            .c_str());
+    state.SkipWithError(fmt::format("not run: estimated {:.0f} s > limit {:.0f} s ({:.2f} GB of matrix)",
+                                    e.seconds, limit_s, e.gb())
+                            .c_str());
     return true;
   }
   return false;
@@ -232,19 +235,20 @@ bool skip_if_too_big(benchmark::State& state, const Estimate& e, bool into_matri
 /// Discards the blocks (keeps one value so the work is not optimized away):
 /// the element matrices alone, the thesis' measure.
 class DiscardInserter final : public assembly::MatrixInserter {
-public:
+ public:
   void add(std::span<const Index>, std::span<const Index>, std::span<const double> values) override {
     if (!values.empty()) sum_ += values[0];
   }
   double sum() const { return sum_; }
 
-private:
+ private:
   double sum_ = 0.0;
 };
 
 enum class Sink { matrix, discard };
 
-void run(benchmark::State& state, Index n, int q, bool dg, const assembly::NonlocalOptions& options, Sink sink) {
+void run(benchmark::State& state, Index n, int q, bool dg, const assembly::NonlocalOptions& options,
+         Sink sink) {
   using clock = std::chrono::steady_clock;
   auto since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
   const bool reset = reset_peak_rss();
@@ -328,7 +332,7 @@ void study(benchmark::State& state) {
 /// A MatrixInserter that sums into plain CSR storage over a sparsity pattern,
 /// entry by entry in the order of the add() calls, as PETSc's ADD_VALUES does.
 class CsrInserter final : public assembly::MatrixInserter {
-public:
+ public:
   explicit CsrInserter(assembly::SparsityPattern pattern) : p_(std::move(pattern)) {
     const auto bs = static_cast<std::size_t>(p_.block_size);
     values_.assign(p_.columns.size() * bs * bs, 0.0);
@@ -345,7 +349,8 @@ public:
       for (std::size_t j = 0; j < cols.size(); ++j) {
         if (cols[j] < 0) continue;
         const auto it = std::lower_bound(row.begin(), row.end(), cols[j] / bs);
-        if (it == row.end() || *it != cols[j] / bs) throw std::runtime_error("CsrInserter: entry outside the pattern");
+        if (it == row.end() || *it != cols[j] / bs)
+          throw std::runtime_error("CsrInserter: entry outside the pattern");
         const auto pos = static_cast<std::size_t>(it - row.begin());
         values_[start + pos * static_cast<std::size_t>(bs) + static_cast<std::size_t>(cols[j] % bs)] +=
             v[i * cols.size() + j];
@@ -354,7 +359,7 @@ public:
   }
   std::vector<double>& values() { return values_; }
 
-private:
+ private:
   assembly::SparsityPattern p_;
   std::vector<double> values_;
 };
@@ -389,8 +394,8 @@ std::string compare(const Assembled& a, const Assembled& b) {
                               : fmt::format("{} of {} entries differ, max |diff| / max |K| = {:.2e}", differ,
                                             a.v.size(), max_diff / max_abs);
   if (a.stats.bonds != b.stats.bonds || a.stats.cell_pairs != b.stats.cell_pairs)
-    s += fmt::format("; bonds {} vs {}, cell pairs {} vs {}", a.stats.bonds, b.stats.bonds, a.stats.cell_pairs,
-                     b.stats.cell_pairs);
+    s += fmt::format("; bonds {} vs {}, cell pairs {} vs {}", a.stats.bonds, b.stats.bonds,
+                     a.stats.cell_pairs, b.stats.cell_pairs);
   return s;
 }
 
@@ -407,13 +412,15 @@ void run_checks() {
     const Problem p(10, 3, false, alpha::AlphaField::constant(1.0));
     std::vector<Assembled> s;
     for (int stage = 0; stage < 4; ++stage) s.push_back(assemble_values(p, stage_options(stage)));
-    check("cg10_q3_precomputed", "N=10, 3 points, CG, alpha=1: stage 1 (precomputed points) vs stage 0 (plain)", s[1],
-          s[0]);
+    check("cg10_q3_precomputed",
+          "N=10, 3 points, CG, alpha=1: stage 1 (precomputed points) vs stage 0 (plain)", s[1], s[0]);
     check("cg10_q3_unit", "N=10, 3 points, CG, alpha=1: stage 2 (+unit pairs) vs stage 1", s[2], s[1]);
-    check("cg10_q3_cache", "N=10, 3 points, CG, alpha=1: stage 3 (+translation cache) vs stage 2", s[3], s[2]);
+    check("cg10_q3_cache", "N=10, 3 points, CG, alpha=1: stage 3 (+translation cache) vs stage 2", s[3],
+          s[2]);
     assembly::NonlocalOptions all_plain_cache = stage_options(3);
     all_plain_cache.precomputed_points = false;
-    check("cg10_q3_plain_default", "N=10, 3 points, CG, alpha=1: default options with precomputed_points=false vs default",
+    check("cg10_q3_plain_default",
+          "N=10, 3 points, CG, alpha=1: default options with precomputed_points=false vs default",
           assemble_values(p, all_plain_cache), s[3]);
   }
   {
@@ -432,7 +439,8 @@ void run_checks() {
           assemble_values(p, stage_options(0)), assemble_values(p, stage_options(1)));
     assembly::NonlocalOptions plain_all = stage_options(3);
     plain_all.precomputed_points = false;
-    check("dg8_q2_ball_default", "N=8, 2 points, DG, alpha ball: default with precomputed_points=false vs default",
+    check("dg8_q2_ball_default",
+          "N=8, 2 points, DG, alpha ball: default with precomputed_points=false vs default",
           assemble_values(p, plain_all), assemble_values(p, stage_options(3)));
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -823,15 +823,23 @@ def main(argv):
                      + " (a ghost force of the cubic profile scales as (δ/L)², THEORY §3.2: 0.25 for L doubled).\n")
 
     lines.append("\n## Reading the results\n")
+
+    def where(r):
+        if r < R_IN:
+            return f"inside the α = 1 sphere, {R_IN - r:.3f} = {(R_IN - r) / delta:.2f} δ from its edge"
+        if r <= R_OUT:
+            return "in the transition shell"
+        return f"outside the shell, {r - R_OUT:.3f} = {(r - R_OUT) / delta:.2f} δ beyond it"
+
     q0 = nqs[0]
     ce, de = R[("extension", "continuum", q0)], R[("extension", "discrete", q0)]
     cs_, ds_ = R[("shear", "continuum", q0)], R[("shear", "discrete", q0)]
     txt = [f"- Operator: the program's ghost force agrees with the independent evaluation of THEORY §3–4 to "
            f"{max(gh['rel_diff'] for gh in GH):.0e} (K1) and vanishes to round-off away from the shell (K2): the error "
            "below is what the morphing method with this kernel and geometry gives, not a defect of the assembly.",
-           f"- Where: the largest errors sit at r = {ce['r_at_max']:.3f} (extension) and {cs_['r_at_max']:.3f} (shear), "
-           f"inside the α = 1 sphere within δ of its edge (r = {R_IN}), signed {pct(ce['signed_max_err'])} and "
-           f"{pct(cs_['signed_max_err'])}; a band of the opposite sign lies just outside the shell."]
+           "- Where: the largest errors sit at " + "; ".join(
+               f"{ld} r = {rr['r_at_max']:.3f} ({where(rr['r_at_max'])}), signed {pct(rr['signed_max_err'])}"
+               for ld, rr in (("extension", ce), ("shear", cs_))) + "."]
     if len(nqs) > 1:
         q1 = nqs[1]
         txt.append(f"- Quadrature: {q0}³ → {q1}³ points changes the max error from {pct(ce['max_err'])} to "
@@ -839,7 +847,7 @@ def main(argv):
                    f"{pct(R[('shear', 'continuum', q1)]['max_err'])} (shear), while D̄'s error drops from "
                    f"{pct(pred[q0]['max_abs_rel_voigt'], '.2f')} to {pct(pred[q1]['max_abs_rel_voigt'], '.2f')}: the "
                    "maximum is not set by the quadrature error of the bulk tensor.")
-    txt.append(f"- Centre of the sphere (r < δ from nothing but α = 1 points only for r < {R_IN - delta:.3f}): centre-cell "
+    txt.append(f"- Centre of the sphere (a horizon lies wholly in α = 1 only for r < R − δ = {R_IN - delta:.3f}): centre-cell "
                f"error {pct(ce['centre_err'])} vs {pct(pred[q0]['error']['extension/continuum'])} predicted from D̄ "
                f"(extension, continuum), {pct(de['centre_err'])} vs {pct(pred[q0]['error']['extension/discrete'])} "
                "(discrete); the centre is within δ of the morphing zone, so the prediction is only indicative.")

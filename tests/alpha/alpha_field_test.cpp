@@ -38,7 +38,8 @@ TEST(AlphaField, LinearAndCubicProfiles) {
   EXPECT_LT(alpha::profile_value(Profile::cubic, e), 4 * e * e);
   EXPECT_GT(alpha::profile_value(Profile::cubic, 1 - e), 1 - 4 * e * e);
   for (double t : {0.1, 0.3, 0.45})
-    EXPECT_NEAR(alpha::profile_value(Profile::cubic, 1 - t), 1 - alpha::profile_value(Profile::cubic, t), 1e-15);
+    EXPECT_NEAR(alpha::profile_value(Profile::cubic, 1 - t), 1 - alpha::profile_value(Profile::cubic, t),
+                1e-15);
 }
 
 TEST(AlphaField, ProfilesClampOutsideTheUnitInterval) {
@@ -73,7 +74,8 @@ TEST(AlphaField, SlabWithTiltedNormal) {
   // In 3D the slab is a thick plane: z along it does not matter.
   EXPECT_NEAR(alpha::distance(s, p + 1.5 * n + Vec3(0, 0, 9.0), 3), 1.0, 1e-14);
   // A field normalizes the normal it is given: α at distance 0.3 with L = 1, linear, is 0.7.
-  const AlphaField f = AlphaField::regions({Region{alpha::Slab{p, Vec3(3.0, 4.0, 0.0), 0.5}, 1.0, Profile::linear}}, 2);
+  const AlphaField f =
+      AlphaField::regions({Region{alpha::Slab{p, Vec3(3.0, 4.0, 0.0), 0.5}, 1.0, Profile::linear}}, 2);
   EXPECT_NEAR(f(p + 0.8 * n + tangent), 0.7, 1e-14);
   EXPECT_NEAR(f(p - 0.8 * n - tangent), 0.7, 1e-14);
 }
@@ -98,15 +100,15 @@ TEST(AlphaField, CylinderDistance) {
   EXPECT_NEAR(alpha::distance(s, Vec3(1.0, 0.0, 0.0) - 3.0 * a + 0.75 * radial, 3), 0.5, 1e-14);
   EXPECT_EQ(alpha::distance(s, Vec3(1.0, 0.0, 0.0) + 40.0 * a + 0.2 * radial, 3), 0.0);
   // A field normalizes the axis: the same cylinder given with axis (2, 2, 2).
-  const AlphaField f =
-      AlphaField::regions({Region{alpha::Cylinder{Vec3(1.0, 0.0, 0.0), 2.0 * Vec3::Ones(), 0.25}, 2.0, Profile::linear}}, 3);
+  const AlphaField f = AlphaField::regions(
+      {Region{alpha::Cylinder{Vec3(1.0, 0.0, 0.0), 2.0 * Vec3::Ones(), 0.25}, 2.0, Profile::linear}}, 3);
   EXPECT_NEAR(f(Vec3(1.0, 0.0, 0.0) + 5.0 * a + 1.25 * radial), 0.5, 1e-14);
 }
 
 TEST(AlphaField, BoxWithFiniteAndInfiniteBounds) {
   const alpha::Shape square = alpha::Box{Vec3(0.0, 0.0, -inf), Vec3(1.0, 1.0, inf)};
   EXPECT_NEAR(alpha::distance(square, Vec3(2.0, 3.0, 0.0), 2), std::sqrt(5.0), 1e-14);  // corner
-  EXPECT_NEAR(alpha::distance(square, Vec3(0.5, -0.25, 0.0), 2), 0.25, 1e-15);         // face
+  EXPECT_NEAR(alpha::distance(square, Vec3(0.5, -0.25, 0.0), 2), 0.25, 1e-15);          // face
   EXPECT_EQ(alpha::distance(square, Vec3(0.5, 0.5, 0.0), 2), 0.0);
   // A box finite in z is still a square in 2D (z ignored).
   const alpha::Shape cube = alpha::Box{Vec3(0.0, 0.0, 0.0), Vec3(1.0, 1.0, 1.0)};
@@ -131,7 +133,8 @@ TEST(AlphaField, OneInsideProfileInTransitionZeroBeyond) {
     EXPECT_EQ(f(Vec3(-1.0, 0.0, 0.0)), 1.0);
     for (double d : {0.2, 0.9, 1.1, 1.7}) {
       const double expected = alpha::profile_value(p, 1.0 - d / 2.0);
-      EXPECT_NEAR(f(Vec3(0.0, 1.0 + d, 0.0)), expected, 1e-14) << "profile " << static_cast<int>(p) << " d " << d;
+      EXPECT_NEAR(f(Vec3(0.0, 1.0 + d, 0.0)), expected, 1e-14)
+          << "profile " << static_cast<int>(p) << " d " << d;
     }
     EXPECT_EQ(f(Vec3(3.0, 0.0, 0.0)), 0.0);  // d = L exactly
     EXPECT_EQ(f(Vec3(0.0, -3.5, 0.0)), 0.0);

@@ -18,13 +18,17 @@ TEST(AssemblyDiscreteCalibration, FactorMakesTheLatticeBulkTensorMatchC0) {
   for (int dim : {1, 2, 3}) {
     mesh::StructuredLayout layout;
     layout.spacing = Vec3::Constant(0.125);
-    peridynamics::Micromodulus k{dim == 1 ? peridynamics::KernelShape::constant : peridynamics::KernelShape::exponential,
-                                 0.5, 0.1, 1.0};
+    peridynamics::Micromodulus k{
+        dim == 1 ? peridynamics::KernelShape::constant : peridynamics::KernelShape::exponential, 0.5, 0.1,
+        1.0};
     const auto cal = peridynamics::calibrate_isotropic(k, dim, PlaneMode::strain, 1.0);
     k.scale = cal.scale;
     Eigen::MatrixXd C0 = Eigen::MatrixXd::Zero(fem::voigt_size(dim), fem::voigt_size(dim));
-    if (dim == 1) C0(0, 0) = 1.0;
-    else C0 = fem::reduce_stiffness(fem::stiffness_voigt(fem::IsotropicElasticity{1.0, 0.25}), dim, PlaneMode::strain);
+    if (dim == 1)
+      C0(0, 0) = 1.0;
+    else
+      C0 = fem::reduce_stiffness(fem::stiffness_voigt(fem::IsotropicElasticity{1.0, 0.25}), dim,
+                                 PlaneMode::strain);
     const int n = dim == 3 ? 2 : 4;
     const double f = assembly::discrete_calibration_factor(layout, dim, n, k, C0);
     const Eigen::MatrixXd before = assembly::lattice_bulk_tensor(layout, dim, n, k);

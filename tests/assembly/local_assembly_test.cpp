@@ -12,8 +12,8 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Dense>
 #include <omp.h>
+#include <Eigen/Dense>
 
 #include <algorithm>
 #include <cstring>
@@ -34,8 +34,8 @@ mesh::Mesh box(int dim, Vec3 upper, std::array<Index, 3> cells) {
 
 /// One distorted hex (no two edges parallel), lexicographic node order.
 mesh::Mesh distorted_hex() {
-  std::vector<Vec3> x{{0.0, 0.0, 0.0}, {1.1, 0.1, -0.05}, {-0.1, 0.9, 0.1}, {1.2, 1.1, 0.0},
-                      {0.05, -0.1, 1.0}, {1.0, 0.0, 1.2}, {0.1, 1.0, 0.9}, {0.9, 1.2, 1.1}};
+  std::vector<Vec3> x{{0.0, 0.0, 0.0},   {1.1, 0.1, -0.05}, {-0.1, 0.9, 0.1}, {1.2, 1.1, 0.0},
+                      {0.05, -0.1, 1.0}, {1.0, 0.0, 1.2},   {0.1, 1.0, 0.9},  {0.9, 1.2, 1.1}};
   return mesh::Mesh(3, std::move(x), {0, 1, 2, 3, 4, 5, 6, 7});
 }
 
@@ -88,8 +88,10 @@ TEST(AssemblyLocal, HexStiffnessHasSixRigidModes) {
   for (int i = 0; i < 6; ++i) EXPECT_LT(std::abs(ev[i]), 1e-12 * top) << "eigenvalue " << i << ": " << ev[i];
   for (int i = 6; i < 24; ++i) EXPECT_GT(ev[i], 1e-4 * top) << "eigenvalue " << i << ": " << ev[i];
   // Rigid translations and rotations produce no force.
-  for (const auto& [t, w] : {std::pair{Vec3(1, 0, 0), Vec3::Zero().eval()}, {Vec3(0, -2, 0.5), Vec3::Zero().eval()},
-                             {Vec3::Zero().eval(), Vec3(0, 0, 1)}, {Vec3::Zero().eval(), Vec3(0.3, -1, 0.7)}}) {
+  for (const auto& [t, w] : {std::pair{Vec3(1, 0, 0), Vec3::Zero().eval()},
+                             {Vec3(0, -2, 0.5), Vec3::Zero().eval()},
+                             {Vec3::Zero().eval(), Vec3(0, 0, 1)},
+                             {Vec3::Zero().eval(), Vec3(0.3, -1, 0.7)}}) {
     const Eigen::VectorXd u = rigid(m, t, w);
     EXPECT_LT((K * u).norm(), 1e-13 * K.norm() * u.norm());
   }
@@ -107,7 +109,8 @@ TEST(AssemblyLocal, QuadStiffnessHasThreeRigidModes) {
   const Eigen::VectorXd ev = sorted_eigenvalues(K);
   for (int i = 0; i < 3; ++i) EXPECT_LT(std::abs(ev[i]), 1e-12 * ev[7]) << "eigenvalue " << i;
   for (int i = 3; i < 8; ++i) EXPECT_GT(ev[i], 1e-4 * ev[7]) << "eigenvalue " << i;
-  for (const auto& [t, w] : {std::pair{Vec3(1, 0, 0), Vec3::Zero().eval()}, {Vec3(0, 1, 0), Vec3::Zero().eval()},
+  for (const auto& [t, w] : {std::pair{Vec3(1, 0, 0), Vec3::Zero().eval()},
+                             {Vec3(0, 1, 0), Vec3::Zero().eval()},
                              {Vec3::Zero().eval(), Vec3(0, 0, 1)}}) {
     const Eigen::VectorXd u = rigid(m, t, w);
     EXPECT_LT((K * u).norm(), 1e-13 * K.norm() * u.norm());
@@ -151,7 +154,8 @@ TEST(AssemblyLocal, BodyForceTotalsAndMoments) {
   {
     std::vector<double> F(static_cast<std::size_t>(dm.num_dofs()), 0.0);
     const Vec3 b(1.0, -2.0, 3.0);
-    assemble_body_force(space, [&](const Vec3&) { return b; }, F);
+    assemble_body_force(
+        space, [&](const Vec3&) { return b; }, F);
     Vec3 total = Vec3::Zero(), moment_x = Vec3::Zero();
     for (Index n = 0; n < dm.num_nodes(); ++n)
       for (int d = 0; d < 3; ++d) {
@@ -165,7 +169,8 @@ TEST(AssemblyLocal, BodyForceTotalsAndMoments) {
   {
     // Bilinear density: ∫ y z dV = 2 · (1/2) · (1.5²/2) = 1.125; ∫ x dV = 3.
     std::vector<double> F(static_cast<std::size_t>(dm.num_dofs()), 0.0);
-    assemble_body_force(space, [](const Vec3& x) { return Vec3(x.x(), x.y() * x.z(), 0.0); }, F);
+    assemble_body_force(
+        space, [](const Vec3& x) { return Vec3(x.x(), x.y() * x.z(), 0.0); }, F);
     Vec3 total = Vec3::Zero();
     for (Index n = 0; n < dm.num_nodes(); ++n)
       for (int d = 0; d < 3; ++d) total[d] += F[static_cast<std::size_t>(3 * n + d)];
@@ -180,7 +185,8 @@ TEST(AssemblyLocal, BodyForceTotalsAndMoments) {
     const auto rule2 = fem::gauss_legendre(2, 2);
     const LocalSpace s2{q, dq, rule2, 0.25};
     std::vector<double> F(static_cast<std::size_t>(dq.num_dofs()), 1.0);
-    assemble_body_force(s2, [](const Vec3&) { return Vec3(2.0, -1.0, 5.0); }, F);
+    assemble_body_force(
+        s2, [](const Vec3&) { return Vec3(2.0, -1.0, 5.0); }, F);
     double fx = 0.0, fy = 0.0;
     for (Index n = 0; n < dq.num_nodes(); ++n) {
       fx += F[static_cast<std::size_t>(2 * n)] - 1.0;

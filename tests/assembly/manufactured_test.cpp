@@ -23,17 +23,20 @@ constexpr double pi = std::numbers::pi;
 struct Manufactured {
   int dim;
   std::array<double, 3> amplitude;
-  std::array<std::array<int, 3>, 3> k;         // wave numbers
-  std::array<std::array<bool, 3>, 3> is_cos;   // factor type
+  std::array<std::array<int, 3>, 3> k;        // wave numbers
+  std::array<std::array<bool, 3>, 3> is_cos;  // factor type
 
   // Derivative of order `order` of factor (i, d) at t.
   double factor(int i, int d, int order, double t) const {
     const double w = k[static_cast<std::size_t>(i)][static_cast<std::size_t>(d)] * pi;
     const bool c = is_cos[static_cast<std::size_t>(i)][static_cast<std::size_t>(d)];
     switch (order) {
-      case 0: return c ? std::cos(w * t) : std::sin(w * t);
-      case 1: return c ? -w * std::sin(w * t) : w * std::cos(w * t);
-      default: return c ? -w * w * std::cos(w * t) : -w * w * std::sin(w * t);
+      case 0:
+        return c ? std::cos(w * t) : std::sin(w * t);
+      case 1:
+        return c ? -w * std::sin(w * t) : w * std::cos(w * t);
+      default:
+        return c ? -w * w * std::cos(w * t) : -w * w * std::sin(w * t);
     }
   }
   /// ∂^{orders} u_i with orders[d] derivatives along d.
@@ -89,7 +92,8 @@ std::pair<double, double> errors(const assembly::LocalSpace& space, const Eigen:
     const auto nodes = space.dofmap.cell_nodes(c);
     for (int a = 0; a < fem::q1_nodes<D>; ++a) {
       X.col(a) = space.dofmap.node_coordinate(nodes[static_cast<std::size_t>(a)]).template head<D>();
-      for (int d = 0; d < D; ++d) ue[a * D + d] = u[static_cast<std::size_t>(nodes[static_cast<std::size_t>(a)] * D + d)];
+      for (int d = 0; d < D; ++d)
+        ue[a * D + d] = u[static_cast<std::size_t>(nodes[static_cast<std::size_t>(a)] * D + d)];
     }
     fem::ShapeGradients<D> g;
     for (const auto& q : rule) {
@@ -106,8 +110,10 @@ std::pair<double, double> errors(const assembly::LocalSpace& space, const Eigen:
       const fem::VoigtVector<D> eh = fem::strain_displacement<D>(g) * ue;
       const Mat3 G = ex.grad(x);
       fem::VoigtVector<D> eex;
-      if constexpr (D == 2) eex << G(0, 0), G(1, 1), G(0, 1) + G(1, 0);
-      else eex << G(0, 0), G(1, 1), G(2, 2), G(1, 2) + G(2, 1), G(0, 2) + G(2, 0), G(0, 1) + G(1, 0);
+      if constexpr (D == 2)
+        eex << G(0, 0), G(1, 1), G(0, 1) + G(1, 0);
+      else
+        eex << G(0, 0), G(1, 1), G(2, 2), G(1, 2) + G(2, 1), G(0, 2) + G(2, 0), G(0, 1) + G(1, 0);
       const fem::VoigtVector<D> de = eh - eex;
       energy += de.dot(Cv * de) * dv;
     }
@@ -132,9 +138,10 @@ void convergence_study(const Manufactured& ex, const std::vector<int>& sizes) {
     const assembly::LocalSpace space{m, dm, load_rule, 1.0};
     // Body force integrated with 3 points per direction (smooth data), stiffness with 2.
     std::vector<double> F(static_cast<std::size_t>(dm.num_dofs()), 0.0);
-    assembly::assemble_body_force(space, [&](const Vec3& x) { return ex.body_force(x, lambda, mu); }, F);
-    const auto u = testing::solve_local({m, dm, rule, 1.0}, C, m.node_sets.at("boundary"),
-                                        [&](const Vec3& x) { return ex.u(x); }, F);
+    assembly::assemble_body_force(
+        space, [&](const Vec3& x) { return ex.body_force(x, lambda, mu); }, F);
+    const auto u = testing::solve_local(
+        {m, dm, rule, 1.0}, C, m.node_sets.at("boundary"), [&](const Vec3& x) { return ex.u(x); }, F);
     const auto [l2, en] = errors<D>({m, dm, rule, 1.0}, Cv, ex, u);
     h.push_back(1.0 / n);
     el2.push_back(l2);
@@ -143,7 +150,8 @@ void convergence_study(const Manufactured& ex, const std::vector<int>& sizes) {
   for (std::size_t i = 1; i < h.size(); ++i) {
     const double p_l2 = std::log(el2[i - 1] / el2[i]) / std::log(h[i - 1] / h[i]);
     const double p_en = std::log(een[i - 1] / een[i]) / std::log(h[i - 1] / h[i]);
-    std::printf("%dD h=1/%d  L2 %.4e (order %.3f)  energy %.4e (order %.3f)\n", D, sizes[i], el2[i], p_l2, een[i], p_en);
+    std::printf("%dD h=1/%d  L2 %.4e (order %.3f)  energy %.4e (order %.3f)\n", D, sizes[i], el2[i], p_l2,
+                een[i], p_en);
     if (i + 1 == h.size()) {
       EXPECT_NEAR(p_l2, 2.0, 0.15);
       EXPECT_NEAR(p_en, 1.0, 0.15);
@@ -152,12 +160,15 @@ void convergence_study(const Manufactured& ex, const std::vector<int>& sizes) {
 }
 
 TEST(AssemblyManufactured, ConvergenceOrders2DPlaneStrain) {
-  Manufactured ex{2, {1e-3, 2e-3, 0}, {{{1, 1, 0}, {2, 1, 0}, {0, 0, 0}}}, {{{false, false}, {true, false}, {}}}};
+  Manufactured ex{
+      2, {1e-3, 2e-3, 0}, {{{1, 1, 0}, {2, 1, 0}, {0, 0, 0}}}, {{{false, false}, {true, false}, {}}}};
   convergence_study<2>(ex, {8, 16, 32, 64});
 }
 
 TEST(AssemblyManufactured, ConvergenceOrders3D) {
-  Manufactured ex{3, {1e-3, 2e-3, -1e-3}, {{{1, 1, 1}, {1, 2, 1}, {2, 1, 1}}},
+  Manufactured ex{3,
+                  {1e-3, 2e-3, -1e-3},
+                  {{{1, 1, 1}, {1, 2, 1}, {2, 1, 1}}},
                   {{{false, false, true}, {true, false, false}, {false, true, false}}}};
   convergence_study<3>(ex, {4, 8, 16});
 }

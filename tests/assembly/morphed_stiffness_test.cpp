@@ -46,7 +46,8 @@ Vec3 local_point(const driver::Model& m, Index c, int q) {
 /// Reference stiffness of the case's (single, isotropic) material, as the model reduces it.
 Eigen::MatrixXd reference_C0(const casefile::CaseConfig& c) {
   const auto& mat = c.materials.front();
-  return fem::reduce_stiffness(fem::stiffness_voigt(fem::IsotropicElasticity{mat.E, mat.nu}), c.dim(), c.model.plane);
+  return fem::reduce_stiffness(fem::stiffness_voigt(fem::IsotropicElasticity{mat.E, mat.nu}), c.dim(),
+                               c.model.plane);
 }
 
 /// min and max of α over the non-local points within δ of x, and α(x) itself.
@@ -119,12 +120,15 @@ TEST(AssemblyMorphed, LocalWhereAlphaVanishesOnHorizonNonlocalWhereAlphaIsOne) {
         EXPECT_TRUE(flag) << "cell " << cell;
       }
       if (flag) {
-        for (int q = 0; q < nq; ++q) EXPECT_EQ(m.stiffness.matrix(cell, q).cwiseAbs().maxCoeff(), 0.0) << cell;
+        for (int q = 0; q < nq; ++q)
+          EXPECT_EQ(m.stiffness.matrix(cell, q).cwiseAbs().maxCoeff(), 0.0) << cell;
       }
       EXPECT_TRUE(m.has_local_stiffness(cell) == !flag);
     }
-    std::printf("%dD: %d points with α ≡ 0 on the horizon, %d with α ≡ 1; %d cells with α ≡ 1 everywhere, %d flagged\n",
-                dim, local_points, nonlocal_points, nonlocal_cells, flagged);
+    std::printf(
+        "%dD: %d points with α ≡ 0 on the horizon, %d with α ≡ 1; %d cells with α ≡ 1 everywhere, %d "
+        "flagged\n",
+        dim, local_points, nonlocal_points, nonlocal_cells, flagged);
     EXPECT_GT(local_points, 0);
     EXPECT_GT(nonlocal_cells, 0);
     EXPECT_GT(morph.morphing_cells, 0);
@@ -150,12 +154,14 @@ TEST(AssemblyMorphed, MorphingZoneSymmetries) {
         ++checked;
         const Eigen::MatrixXd C = m.stiffness.matrix(cell, q);
         const double a = nl.alpha(x);
-        EXPECT_NEAR(m.nonlocal->morph.alpha[static_cast<std::size_t>(cell) * m.rule.size() + static_cast<std::size_t>(q)], a,
-                    1e-14);
+        EXPECT_NEAR(m.nonlocal->morph
+                        .alpha[static_cast<std::size_t>(cell) * m.rule.size() + static_cast<std::size_t>(q)],
+                    a, 1e-14);
         // Major symmetry, exactly.
         EXPECT_TRUE(bitwise_equal(C, C.transpose())) << "cell " << cell << " point " << q;
         // C = (1 − α) C₀ + horizon integral (over the cell's graph row).
-        const Eigen::MatrixXd I = assembly::horizon_integral(x, a, nl.graph.row(cell), nl.points, nl.kernel, m.mesh);
+        const Eigen::MatrixXd I =
+            assembly::horizon_integral(x, a, nl.graph.row(cell), nl.points, nl.kernel, m.mesh);
         EXPECT_LE((C - (1.0 - a) * C0 - I).cwiseAbs().maxCoeff(), 1e-14 * c0max);
         largest_integral = std::max(largest_integral, I.cwiseAbs().maxCoeff());
         // Central symmetry of the integral, C_ijkl = C_ikjl, on the full tensor.
@@ -201,7 +207,8 @@ TEST(AssemblyMorphed, PartitionRuleIsExactlyOneMinusAlphaTimesC0) {
           fractional += a > 0.0 && a < 1.0 ? 1 : 0;
           all_one = all_one && a == 1.0;
           const Eigen::MatrixXd expected = (1.0 - a) * C0;
-          EXPECT_TRUE(bitwise_equal(m.stiffness.matrix(cell, q), expected)) << dim << "D cell " << cell << " α " << a;
+          EXPECT_TRUE(bitwise_equal(m.stiffness.matrix(cell, q), expected))
+              << dim << "D cell " << cell << " α " << a;
         }
         EXPECT_EQ(m.nonlocal->morph.purely_nonlocal[static_cast<std::size_t>(cell)] != 0, all_one) << cell;
       }
@@ -221,8 +228,8 @@ double simpson(const std::function<double(double)>& f, double a, double b, int n
 
 /// β(x) = 1 − α(x) + ∫_{x−δ}^{x+δ} (α(x) − α(p)) c(|p − x|) (p − x)² / (4E₀) dp (THEORY §3, 1D),
 /// by Simpson on the pieces between the kinks of α and of c (p = x) and the bar's ends.
-double beta(double x, const std::function<double(double)>& alpha, const std::function<double(double)>& c, double E0,
-            double delta, std::vector<double> breaks, double length) {
+double beta(double x, const std::function<double(double)>& alpha, const std::function<double(double)>& c,
+            double E0, double delta, std::vector<double> breaks, double length) {
   breaks.push_back(x);
   breaks.push_back(std::max(0.0, x - delta));
   breaks.push_back(std::min(length, x + delta));
@@ -231,8 +238,9 @@ double beta(double x, const std::function<double(double)>& alpha, const std::fun
   double integral = 0.0;
   for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
     const double lo = std::max(a0, breaks[i]), hi = std::min(a1, breaks[i + 1]);
-    integral += simpson([&](double p) { return (alpha(x) - alpha(p)) * c(std::abs(p - x)) * (p - x) * (p - x); }, lo,
-                        hi, 2000);
+    integral +=
+        simpson([&](double p) { return (alpha(x) - alpha(p)) * c(std::abs(p - x)) * (p - x) * (p - x); }, lo,
+                hi, 2000);
   }
   return 1.0 - alpha(x) + integral / (4.0 * E0);
 }
@@ -289,7 +297,8 @@ TEST(AssemblyMorphed, OneDimensionalStiffnessIsBetaTimesE0) {
           const double ratio = m.stiffness.matrix(cell, q)(0, 0) / E;
           double jumps = 0.0;
           for (double p : {x - delta, x + delta})
-            if (p > 0.0 && p < length) jumps += std::abs(alpha(x) - alpha(p)) * micro(delta) * delta * delta / (4.0 * E0);
+            if (p > 0.0 && p < length)
+              jumps += std::abs(alpha(x) - alpha(p)) * micro(delta) * delta * delta / (4.0 * E0);
           const double bound = w_max * jumps + smooth_allowance;
           largest_change = std::max(largest_change, std::abs(b - (1.0 - alpha(x))));
           if (std::abs(ratio - b) > worst) {
@@ -299,9 +308,11 @@ TEST(AssemblyMorphed, OneDimensionalStiffnessIsBetaTimesE0) {
           }
           EXPECT_LE(std::abs(ratio - b), bound) << "x = " << x;
         }
-      std::printf("1D %s kernel, %s α: max |C/E0 − β| = %.3e at x = %.3f (bound there %.3e); max |β − (1 − α)| = %.3e\n",
-                  kernel == KernelKind::constant ? "constant" : "gaussian", cubic ? "cubic" : "linear", worst, worst_x,
-                  worst_bound, largest_change);
+      std::printf(
+          "1D %s kernel, %s α: max |C/E0 − β| = %.3e at x = %.3f (bound there %.3e); max |β − (1 − α)| = "
+          "%.3e\n",
+          kernel == KernelKind::constant ? "constant" : "gaussian", cubic ? "cubic" : "linear", worst,
+          worst_x, worst_bound, largest_change);
       // The horizon correction is well above the error: the test sees it.
       EXPECT_GT(largest_change, 5.0 * worst);
     }
@@ -333,8 +344,10 @@ TEST(AssemblyMorphed, DiscreteEnergyIdentityUnderUniformStrain) {
       eps.col(2).setZero();
     }
     Eigen::VectorXd ev(fem::voigt_size(dim));  // engineering shear
-    if (dim == 2) ev << eps(0, 0), eps(1, 1), 2 * eps(0, 1);
-    else ev << eps(0, 0), eps(1, 1), eps(2, 2), 2 * eps(1, 2), 2 * eps(0, 2), 2 * eps(0, 1);
+    if (dim == 2)
+      ev << eps(0, 0), eps(1, 1), 2 * eps(0, 1);
+    else
+      ev << eps(0, 0), eps(1, 1), eps(2, 2), 2 * eps(1, 2), 2 * eps(0, 2), 2 * eps(0, 1);
     const double local_energy = 0.5 * ev.dot(C0 * ev);
     const double delta = nl.kernel.horizon;
     const Vec3 upper = c.mesh.box.upper;
@@ -366,9 +379,10 @@ TEST(AssemblyMorphed, DiscreteEnergyIdentityUnderUniformStrain) {
         worst_vs_C0 = std::max(worst_vs_C0, std::abs(hybrid - local_energy) / local_energy);
         EXPECT_LT(std::abs(hybrid - identity), 1e-12 * local_energy) << "cell " << cell << " point " << q;
       }
-    std::printf("%dD (t = %.1f) energy identity at %d morphing-zone points: max rel. deviation %.2e; "
-                "hybrid vs ½ε:D:ε %.2e, vs ½ε:C0:ε %.2e\n",
-                dim, thickness, checked, worst, worst_vs_D, worst_vs_C0);
+    std::printf(
+        "%dD (t = %.1f) energy identity at %d morphing-zone points: max rel. deviation %.2e; "
+        "hybrid vs ½ε:D:ε %.2e, vs ½ε:C0:ε %.2e\n",
+        dim, thickness, checked, worst, worst_vs_D, worst_vs_C0);
     EXPECT_GT(checked, 0);
   }
 }
@@ -406,8 +420,8 @@ TEST(AssemblyMorphed, ThicknessScalesLocalAndNonlocalAlike) {
       const double nonlocal = uniform_strain_energy(c);
       ratios.push_back(nonlocal / local);
     }
-    std::printf("%dD: non-local/local energy ratio %.6f %.6f %.6f for t = 1, 0.5, 2\n", dim, ratios[0], ratios[1],
-                ratios[2]);
+    std::printf("%dD: non-local/local energy ratio %.6f %.6f %.6f for t = 1, 0.5, 2\n", dim, ratios[0],
+                ratios[1], ratios[2]);
     EXPECT_NEAR(ratios[1], ratios[0], 1e-12 * ratios[0]) << dim << "D";
     EXPECT_NEAR(ratios[2], ratios[0], 1e-12 * ratios[0]) << dim << "D";
   }

@@ -25,7 +25,8 @@ mesh::Mesh box(int dim, std::array<Index, 3> cells) {
 
 /// Independent reference: row r = every dof node sharing a cell (or an extra
 /// cell pair, either direction) with r.
-std::vector<std::set<Index>> reference(const dofs::DofMap& dm, const std::vector<std::pair<Index, Index>>& pairs) {
+std::vector<std::set<Index>> reference(const dofs::DofMap& dm,
+                                       const std::vector<std::pair<Index, Index>>& pairs) {
   std::vector<std::set<Index>> rows(static_cast<std::size_t>(dm.num_nodes()));
   auto couple = [&](Index c, Index e) {
     for (Index a : dm.cell_nodes(c))
@@ -40,7 +41,8 @@ std::vector<std::set<Index>> reference(const dofs::DofMap& dm, const std::vector
 }
 
 /// Structure every pattern must have, and equality with the reference.
-void expect_valid(const SparsityPattern& p, const dofs::DofMap& dm, const std::vector<std::pair<Index, Index>>& pairs) {
+void expect_valid(const SparsityPattern& p, const dofs::DofMap& dm,
+                  const std::vector<std::pair<Index, Index>>& pairs) {
   ASSERT_EQ(p.num_block_rows(), dm.num_nodes());
   ASSERT_EQ(p.row_offsets.size(), static_cast<std::size_t>(dm.num_nodes()) + 1);
   EXPECT_EQ(p.row_offsets.front(), 0);
@@ -49,7 +51,8 @@ void expect_valid(const SparsityPattern& p, const dofs::DofMap& dm, const std::v
   const auto ref = reference(dm, pairs);
   for (Index r = 0; r < p.num_block_rows(); ++r) {
     const auto row = p.row(r);
-    EXPECT_TRUE(std::adjacent_find(row.begin(), row.end(), [](Index a, Index b) { return a >= b; }) == row.end())
+    EXPECT_TRUE(std::adjacent_find(row.begin(), row.end(), [](Index a, Index b) { return a >= b; }) ==
+                row.end())
         << "row " << r << " not strictly ascending";
     EXPECT_TRUE(std::binary_search(row.begin(), row.end(), r)) << "row " << r << " lacks the diagonal";
     for (Index c : row) {
@@ -58,8 +61,9 @@ void expect_valid(const SparsityPattern& p, const dofs::DofMap& dm, const std::v
       const auto other = p.row(c);
       EXPECT_TRUE(std::binary_search(other.begin(), other.end(), r)) << "asymmetric " << r << "," << c;
     }
-    EXPECT_EQ(std::vector<Index>(row.begin(), row.end()),
-              std::vector<Index>(ref[static_cast<std::size_t>(r)].begin(), ref[static_cast<std::size_t>(r)].end()))
+    EXPECT_EQ(
+        std::vector<Index>(row.begin(), row.end()),
+        std::vector<Index>(ref[static_cast<std::size_t>(r)].begin(), ref[static_cast<std::size_t>(r)].end()))
         << "row " << r;
   }
 }
@@ -77,7 +81,8 @@ TEST(AssemblySparsity, StructuredQuadRowSizes) {
       const std::size_t expected = edge_x && edge_y ? 4u : (edge_x || edge_y ? 6u : 9u);
       EXPECT_EQ(p.row(i + 4 * j).size(), expected) << "node (" << i << ", " << j << ")";
     }
-  EXPECT_EQ(std::vector<Index>(p.row(5).begin(), p.row(5).end()), (std::vector<Index>{0, 1, 2, 4, 5, 6, 8, 9, 10}));
+  EXPECT_EQ(std::vector<Index>(p.row(5).begin(), p.row(5).end()),
+            (std::vector<Index>{0, 1, 2, 4, 5, 6, 8, 9, 10}));
   EXPECT_EQ(p.columns.size(), 4u * 4u + 6u * 6u + 2u * 9u);
 }
 
@@ -101,7 +106,8 @@ TEST(AssemblySparsity, DiscontinuousCellsGetPrivateNodes) {
   // Independent count: mesh nodes touched by a CG cell, plus 4 per DG cell.
   std::set<Index> cg;
   for (Index c = 0; c < m.num_cells(); ++c)
-    if (flags[static_cast<std::size_t>(c)] == dofs::Continuity::continuous) cg.insert(m.cell(c).begin(), m.cell(c).end());
+    if (flags[static_cast<std::size_t>(c)] == dofs::Continuity::continuous)
+      cg.insert(m.cell(c).begin(), m.cell(c).end());
   EXPECT_EQ(cg.size(), 11u);
   ASSERT_EQ(dm.num_nodes(), 11 + 2 * 4);
   EXPECT_EQ(dm.num_dofs(), 2 * 19);
@@ -112,7 +118,8 @@ TEST(AssemblySparsity, DiscontinuousCellsGetPrivateNodes) {
     std::sort(own.begin(), own.end());
     for (Index n : own) {
       EXPECT_GE(n, 11) << "DG node numbered among CG nodes";
-      EXPECT_EQ(std::vector<Index>(p.row(n).begin(), p.row(n).end()), own) << "DG node " << n << " of cell " << c;
+      EXPECT_EQ(std::vector<Index>(p.row(n).begin(), p.row(n).end()), own)
+          << "DG node " << n << " of cell " << c;
     }
   }
   // CG rows never reach DG nodes.
@@ -146,9 +153,11 @@ TEST(AssemblySparsity, ExtraCellPairsWidenRows) {
   const SparsityPattern p = build_sparsity(dm, &graph);
   expect_valid(p, dm, pairs);
   // Node 0 (only in cell 0) now couples to cell 5's nodes 6, 7, 10, 11.
-  EXPECT_EQ(std::vector<Index>(p.row(0).begin(), p.row(0).end()), (std::vector<Index>{0, 1, 4, 5, 6, 7, 10, 11}));
+  EXPECT_EQ(std::vector<Index>(p.row(0).begin(), p.row(0).end()),
+            (std::vector<Index>{0, 1, 4, 5, 6, 7, 10, 11}));
   // Node 11 (only in cell 5) couples to cell 0's nodes.
-  EXPECT_EQ(std::vector<Index>(p.row(11).begin(), p.row(11).end()), (std::vector<Index>{0, 1, 4, 5, 6, 7, 10, 11}));
+  EXPECT_EQ(std::vector<Index>(p.row(11).begin(), p.row(11).end()),
+            (std::vector<Index>{0, 1, 4, 5, 6, 7, 10, 11}));
   // Node 6 already had 9 entries; 0 and 4 are added (1 and 5 were there).
   EXPECT_EQ(p.row(6).size(), 11u);
   EXPECT_GT(p.columns.size(), base.columns.size());

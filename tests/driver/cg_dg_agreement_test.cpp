@@ -22,8 +22,9 @@ double cg_dg_difference(Index n) {
   for (int k = 0; k < 2; ++k) {
     auto c = testing::box_case(2, {n, n, 1}, Vec3(1.0, 1.0, 0.0), 1.0, 0.25);
     const double h = 1.0 / static_cast<double>(n);
-    testing::add_nonlocal(c, casefile::KernelKind::gaussian, 3 * h, h, 3,
-                          k == 0 ? casefile::Discretization::continuous : casefile::Discretization::discontinuous);
+    testing::add_nonlocal(
+        c, casefile::KernelKind::gaussian, 3 * h, h, 3,
+        k == 0 ? casefile::Discretization::continuous : casefile::Discretization::discontinuous);
     c.alpha.regions = {testing::alpha_ball(Vec3(0.5, 0.5, 0), 0.32, 0.12)};
     casefile::DirichletSpec bottom, top;
     bottom.set = "ymin";
@@ -33,8 +34,8 @@ double cg_dg_difference(Index n) {
     top.value = Vec3(2e-4, 1e-3, 0);
     c.dirichlet = {bottom, top};
     const auto model = driver::build_model(c);
-    const auto run =
-        driver::run_static(model, {(std::filesystem::temp_directory_path() / "perimorph_cgdg").string(), true});
+    const auto run = driver::run_static(
+        model, {(std::filesystem::temp_directory_path() / "perimorph_cgdg").string(), true});
     u[k] = run.displacement;
     for (Index a = 0; a < model.dofmap.num_nodes(); ++a) mesh_node[k].push_back(model.dofmap.mesh_node(a));
     if (k == 1) {
@@ -47,12 +48,14 @@ double cg_dg_difference(Index n) {
   for (double v : u[0]) umax = std::max(umax, std::abs(v));
   // CG dof node a ↔ mesh node mesh_node[0][a]; compare every DG-side copy with it.
   std::vector<Index> cg_of_mesh(mesh_node[0].size() * 2, -1);
-  for (std::size_t a = 0; a < mesh_node[0].size(); ++a) cg_of_mesh[static_cast<std::size_t>(mesh_node[0][a])] = static_cast<Index>(a);
+  for (std::size_t a = 0; a < mesh_node[0].size(); ++a)
+    cg_of_mesh[static_cast<std::size_t>(mesh_node[0][a])] = static_cast<Index>(a);
   double diff = 0.0;
   for (std::size_t b = 0; b < mesh_node[1].size(); ++b) {
     const Index a = cg_of_mesh[static_cast<std::size_t>(mesh_node[1][b])];
     for (int d = 0; d < 2; ++d)
-      diff = std::max(diff, std::abs(u[1][b * 2 + static_cast<std::size_t>(d)] - u[0][static_cast<std::size_t>(a) * 2 + static_cast<std::size_t>(d)]));
+      diff = std::max(diff, std::abs(u[1][b * 2 + static_cast<std::size_t>(d)] -
+                                     u[0][static_cast<std::size_t>(a) * 2 + static_cast<std::size_t>(d)]));
   }
   return diff / umax;
 }

@@ -35,7 +35,8 @@ Eigen::VectorXd mean_strain(const driver::Model& model, const std::vector<double
   Eigen::VectorXd mean = Eigen::VectorXd::Zero(nv);
   Eigen::VectorXd max_dev = Eigen::VectorXd::Zero(nv);
   for (Index c = 0; c < model.mesh.num_cells(); ++c)
-    for (int i = 0; i < nv; ++i) mean[i] += f.strain[static_cast<std::size_t>(c * nv + i)] / model.mesh.num_cells();
+    for (int i = 0; i < nv; ++i)
+      mean[i] += f.strain[static_cast<std::size_t>(c * nv + i)] / model.mesh.num_cells();
   for (Index c = 0; c < model.mesh.num_cells(); ++c)
     for (int i = 0; i < nv; ++i)
       EXPECT_NEAR(f.strain[static_cast<std::size_t>(c * nv + i)], mean[i], 1e-12) << "strain is not uniform";

@@ -79,12 +79,13 @@ TEST(NonlocalConsistency, AlphaOneDegreeZeroIsMeshfreeSum) {
     const double delta = 1.6;  // δ/h = 3.2
     auto c = testing::box_case(dim, n, extent, 300.0, dim == 1 ? 0.0 : 0.25);
     c.model.thickness = 0.7;
-    testing::add_nonlocal(c, KernelKind::gaussian, delta, delta / 3.0, 1, casefile::Discretization::discontinuous_constant);
+    testing::add_nonlocal(c, KernelKind::gaussian, delta, delta / 3.0, 1,
+                          casefile::Discretization::discontinuous_constant);
     c.alpha.value = 1.0;
     const auto model = driver::build_model(c);
     const Eigen::MatrixXd A = driver::assemble_stiffness(model).K.to_dense();
-    const Eigen::MatrixXd B = meshfree_stiffness(dim, n, extent, delta, model.nonlocal->kernel.scale,
-                                                 dim == 3 ? 1.0 : 0.7);
+    const Eigen::MatrixXd B =
+        meshfree_stiffness(dim, n, extent, delta, model.nonlocal->kernel.scale, dim == 3 ? 1.0 : 0.7);
     ASSERT_EQ(A.rows(), B.rows()) << "dim " << dim;
     EXPECT_LT((A - B).cwiseAbs().maxCoeff(), 1e-12 * B.cwiseAbs().maxCoeff()) << "dim " << dim;
   }
@@ -120,7 +121,8 @@ std::pair<double, double> uniform_strain_residual(int dim, casefile::Discretizat
     interior_nodes += dist > delta + h + 1e-12 ? 1 : 0;
     for (int d = 0; d < dim; ++d) {
       const double v = std::abs(rv[static_cast<std::size_t>(a * dim + d)]);
-      (dist > delta + h + 1e-12 ? interior : boundary) = std::max(dist > delta + h + 1e-12 ? interior : boundary, v);
+      (dist > delta + h + 1e-12 ? interior : boundary) =
+          std::max(dist > delta + h + 1e-12 ? interior : boundary, v);
     }
   }
   EXPECT_GT(interior_nodes, 0) << "no interior node: the test would be vacuous";
@@ -144,8 +146,8 @@ TEST(NonlocalConsistency, UniformStrainInFullyNonlocalInteriorDGResidualIsQuadra
   std::vector<double> ratios;
   for (int q : {2, 3, 4}) {
     const auto [interior, boundary] = uniform_strain_residual(2, casefile::Discretization::discontinuous, q);
-    std::printf("DG 2D, %d points/direction: interior %.3e, boundary %.3e, ratio %.3e\n", q, interior, boundary,
-                interior / boundary);
+    std::printf("DG 2D, %d points/direction: interior %.3e, boundary %.3e, ratio %.3e\n", q, interior,
+                boundary, interior / boundary);
     ratios.push_back(interior / boundary);
   }
   EXPECT_LT(ratios.back(), ratios.front());

@@ -42,9 +42,13 @@ Eigen::Matrix<double, 6, 1> sorted_eigenvalues(const Voigt6& C) {
   return ev;
 }
 
-double rel_diff(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return (a - b).norm() / b.norm(); }
+double rel_diff(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return (a - b).norm() / b.norm();
+}
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+bool contains(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
 
 TEST(FemMaterial, IsotropicVoigtMatchesLame) {
   // E = 200, ν = 0.25: λ = μ = 80.
@@ -74,7 +78,8 @@ TEST(FemMaterial, PlaneStrainIsSubBlock) {
   ASSERT_EQ(P.cols(), 3);
   const std::array<int, 3> idx{0, 1, 5};
   for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) EXPECT_EQ(P(a, b), C(idx[static_cast<std::size_t>(a)], idx[static_cast<std::size_t>(b)]));
+    for (int b = 0; b < 3; ++b)
+      EXPECT_EQ(P(a, b), C(idx[static_cast<std::size_t>(a)], idx[static_cast<std::size_t>(b)]));
   // Also for an anisotropic (rotated orthotropic) tensor with xy–normal coupling.
   OrthotropicElasticity m = sample_orthotropic();
   m.axes = Eigen::AngleAxisd(0.6, Vec3::UnitZ()).toRotationMatrix();
@@ -82,25 +87,29 @@ TEST(FemMaterial, PlaneStrainIsSubBlock) {
   const Eigen::MatrixXd Po = reduce_stiffness(Co, 2, PlaneMode::strain);
   EXPECT_NE(Co(0, 5), 0.0);
   for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) EXPECT_EQ(Po(a, b), Co(idx[static_cast<std::size_t>(a)], idx[static_cast<std::size_t>(b)]));
+    for (int b = 0; b < 3; ++b)
+      EXPECT_EQ(Po(a, b), Co(idx[static_cast<std::size_t>(a)], idx[static_cast<std::size_t>(b)]));
   EXPECT_EQ(reduce_stiffness(C, 3, PlaneMode::stress), Eigen::MatrixXd(C));
 }
 
 TEST(FemMaterial, PlaneStressIsotropicFormula) {
   const double E = 70.0, nu = 0.33;
-  const Eigen::MatrixXd P = reduce_stiffness(stiffness_voigt(IsotropicElasticity{E, nu}), 2, PlaneMode::stress);
+  const Eigen::MatrixXd P =
+      reduce_stiffness(stiffness_voigt(IsotropicElasticity{E, nu}), 2, PlaneMode::stress);
   Eigen::Matrix3d expected;
   expected << 1, nu, 0, nu, 1, 0, 0, 0, (1 - nu) / 2;
   expected *= E / (1 - nu * nu);
   ASSERT_EQ(P.rows(), 3);
   EXPECT_LT(rel_diff(P, expected), 1e-13);
   // Plane stress is softer than plane strain.
-  const Eigen::MatrixXd S = reduce_stiffness(stiffness_voigt(IsotropicElasticity{E, nu}), 2, PlaneMode::strain);
+  const Eigen::MatrixXd S =
+      reduce_stiffness(stiffness_voigt(IsotropicElasticity{E, nu}), 2, PlaneMode::strain);
   EXPECT_GT(S(0, 0), P(0, 0) * 1.05);
 }
 
 TEST(FemMaterial, UniaxialReduction) {
-  const Eigen::MatrixXd P = reduce_stiffness(stiffness_voigt(IsotropicElasticity{70.0, 0.33}), 1, PlaneMode::strain);
+  const Eigen::MatrixXd P =
+      reduce_stiffness(stiffness_voigt(IsotropicElasticity{70.0, 0.33}), 1, PlaneMode::strain);
   ASSERT_EQ(P.rows(), 1);
   ASSERT_EQ(P.cols(), 1);
   EXPECT_NEAR(P(0, 0), 70.0, 1e-12);
@@ -162,7 +171,8 @@ TEST(FemMaterial, Rotation90AboutZSwapsAxes1And2) {
   const std::array<int, 6> perm{1, 0, 2, 4, 3, 5};
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 6; ++j)
-      EXPECT_NEAR(Cr(i, j), C(perm[static_cast<std::size_t>(i)], perm[static_cast<std::size_t>(j)]), 1e-10 * C.norm())
+      EXPECT_NEAR(Cr(i, j), C(perm[static_cast<std::size_t>(i)], perm[static_cast<std::size_t>(j)]),
+                  1e-10 * C.norm())
           << i << "," << j;
   // Uniaxial stress along mesh x now stretches by σ/E2.
   Eigen::Matrix<double, 6, 1> sigma = Eigen::Matrix<double, 6, 1>::Zero();
@@ -178,9 +188,10 @@ TEST(FemMaterial, RotationPreservesMandelEigenvalues) {
   std::mt19937 gen(20240607u);
   std::uniform_real_distribution<double> angle(-std::numbers::pi, std::numbers::pi);
   for (int trial = 0; trial < 5; ++trial) {
-    const Mat3 R = (Eigen::AngleAxisd(angle(gen), Vec3::UnitZ()) * Eigen::AngleAxisd(angle(gen), Vec3::UnitY()) *
-                    Eigen::AngleAxisd(angle(gen), Vec3::UnitX()))
-                       .toRotationMatrix();
+    const Mat3 R =
+        (Eigen::AngleAxisd(angle(gen), Vec3::UnitZ()) * Eigen::AngleAxisd(angle(gen), Vec3::UnitY()) *
+         Eigen::AngleAxisd(angle(gen), Vec3::UnitX()))
+            .toRotationMatrix();
     const Voigt6 Cr = rotate_stiffness(C, R);
     EXPECT_GT(rel_diff(Cr, C), 1e-3) << "the rotation should change the tensor";
     EXPECT_LT((Cr - Cr.transpose()).norm(), 1e-12 * C.norm());

@@ -10,7 +10,9 @@ namespace perimorph::fem {
 namespace {
 
 /// ∫_{-1}^{1} x^k dx.
-double exact_monomial(int k) { return k % 2 == 1 ? 0.0 : 2.0 / (k + 1); }
+double exact_monomial(int k) {
+  return k % 2 == 1 ? 0.0 : 2.0 / (k + 1);
+}
 
 double integrate_1d(const std::vector<QuadraturePoint>& rule, int k) {
   double s = 0.0;

@@ -96,9 +96,12 @@ void check_linear_reproduction(bool affine) {
   using MatD = Eigen::Matrix<double, D, D>;
   using VecD = Eigen::Matrix<double, D, 1>;
   MatD A;
-  if constexpr (D == 1) A << 0.7;
-  else if constexpr (D == 2) A << 1.3, 0.4, -0.2, 0.9;
-  else A << 1.3, 0.4, 0.1, -0.2, 0.9, 0.3, 0.25, -0.15, 1.1;
+  if constexpr (D == 1)
+    A << 0.7;
+  else if constexpr (D == 2)
+    A << 1.3, 0.4, -0.2, 0.9;
+  else
+    A << 1.3, 0.4, 0.1, -0.2, 0.9, 0.3, 0.25, -0.15, 1.1;
   VecD b;
   for (int d = 0; d < D; ++d) b[d] = 0.5 - 0.3 * d;
   VecD g;

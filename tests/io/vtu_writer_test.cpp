@@ -1,13 +1,14 @@
 // Output stage: .vtu files are checked by a minimal parse written here (not
 // the writer's code) and by the independent Python reader python/read_vtu.py;
 // .pvd and .csv files are read back as text.
+#include "perimorph/io/vtu_writer.hpp"
 #include "perimorph/io/csv_table.hpp"
 #include "perimorph/io/progress.hpp"
 #include "perimorph/io/pvd_writer.hpp"
-#include "perimorph/io/vtu_writer.hpp"
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -18,7 +19,6 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 namespace perimorph::io {
@@ -40,12 +40,18 @@ std::vector<std::uint8_t> b64decode(const std::string& text) {
   int bits = 0;
   for (char c : text) {
     int v = -1;
-    if (c >= 'A' && c <= 'Z') v = c - 'A';
-    else if (c >= 'a' && c <= 'z') v = c - 'a' + 26;
-    else if (c >= '0' && c <= '9') v = c - '0' + 52;
-    else if (c == '+') v = 62;
-    else if (c == '/') v = 63;
-    else if (c == '=') break;
+    if (c >= 'A' && c <= 'Z')
+      v = c - 'A';
+    else if (c >= 'a' && c <= 'z')
+      v = c - 'a' + 26;
+    else if (c >= '0' && c <= '9')
+      v = c - '0' + 52;
+    else if (c == '+')
+      v = 62;
+    else if (c == '/')
+      v = 63;
+    else if (c == '=')
+      break;
     if (v < 0) continue;
     acc = (acc << 6) | static_cast<unsigned>(v);
     bits += 6;
@@ -128,11 +134,10 @@ UnstructuredGrid box_grid(int nx, int ny, int nz) {
 }
 
 class IoFiles : public ::testing::Test {
-protected:
+ protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("perimorph_io_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() / ("perimorph_io_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -180,7 +185,8 @@ TEST_F(IoFiles, QuadGridBase64RoundTripsAndUsesVtkNodeOrder) {
   // First cell's perimorph nodes (0, 1, 4, 5) in VTK's counter-clockwise order.
   const auto conn = binary_values<std::int64_t>(xml, "connectivity");
   ASSERT_EQ(conn.size(), 24u);
-  EXPECT_EQ(std::vector<std::int64_t>(conn.begin(), conn.begin() + 4), (std::vector<std::int64_t>{0, 1, 5, 4}));
+  EXPECT_EQ(std::vector<std::int64_t>(conn.begin(), conn.begin() + 4),
+            (std::vector<std::int64_t>{0, 1, 5, 4}));
   const auto offsets = binary_values<std::int64_t>(xml, "offsets");
   ASSERT_EQ(offsets.size(), 6u);
   EXPECT_EQ(offsets.back(), 24);
@@ -208,11 +214,13 @@ TEST_F(IoFiles, HexGridAsciiRoundTripsExactly) {
 
 TEST_F(IoFiles, PythonReaderAcceptsEveryEncodingAndCellType) {
   if (!have_python()) GTEST_SKIP() << "/usr/bin/python3 not available";
-  const std::string arrays = " --expect-point-array displacement:3 --expect-cell-array damage:1"
-                             " --expect-cell-array stress:6";
+  const std::string arrays =
+      " --expect-point-array displacement:3 --expect-cell-array damage:1"
+      " --expect-cell-array stress:6";
   for (VtuEncoding enc : {VtuEncoding::base64, VtuEncoding::ascii}) {
     write_vtu(file("q.vtu"), box_grid(3, 2, 0), enc);
-    EXPECT_EQ(read_vtu(file("q.vtu") + " --expect-points 12 --expect-cells 6 --expect-cell-type quad" + arrays), 0)
+    EXPECT_EQ(
+        read_vtu(file("q.vtu") + " --expect-points 12 --expect-cells 6 --expect-cell-type quad" + arrays), 0)
         << slurp(file("reader.err"));
     write_vtu(file("h.vtu"), box_grid(2, 1, 2), enc);
     EXPECT_EQ(read_vtu(file("h.vtu") + " --expect-points 18 --expect-cells 4 --expect-cell-type hexahedron" +
@@ -220,7 +228,8 @@ TEST_F(IoFiles, PythonReaderAcceptsEveryEncodingAndCellType) {
               0)
         << slurp(file("reader.err"));
     write_vtu(file("b.vtu"), box_grid(5, 0, 0), enc);
-    EXPECT_EQ(read_vtu(file("b.vtu") + " --expect-points 6 --expect-cells 5 --expect-cell-type line" + arrays), 0)
+    EXPECT_EQ(
+        read_vtu(file("b.vtu") + " --expect-points 6 --expect-cells 5 --expect-cell-type line" + arrays), 0)
         << slurp(file("reader.err"));
   }
 }

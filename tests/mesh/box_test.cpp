@@ -1,8 +1,8 @@
 // Structured box meshes: counts, exact bounds, named sets, cell orientation.
+#include "perimorph/mesh/box.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/fem/quadrature.hpp"
 #include "perimorph/fem/shape.hpp"
-#include "perimorph/mesh/box.hpp"
 
 #include <gtest/gtest.h>
 
@@ -32,7 +32,8 @@ const char* const axis_names[3][2] = {{"xmin", "xmax"}, {"ymin", "ymax"}, {"zmin
 template <int D>
 fem::NodeCoords<D> coords(const Mesh& m, Index c) {
   fem::NodeCoords<D> X;
-  for (int a = 0; a < fem::q1_nodes<D>; ++a) X.col(a) = m.node(m.cell(c)[static_cast<std::size_t>(a)]).head<D>();
+  for (int a = 0; a < fem::q1_nodes<D>; ++a)
+    X.col(a) = m.node(m.cell(c)[static_cast<std::size_t>(a)]).head<D>();
   return X;
 }
 
@@ -65,7 +66,8 @@ void expect_lexicographic_cells(const Mesh& m, const Vec3& h) {
     for (int a = 0; a < m.nodes_per_cell(); ++a) {
       const Vec3 dx = m.node(m.cell(c)[static_cast<std::size_t>(a)]) - x0;
       for (int d = 0; d < m.dim(); ++d)
-        EXPECT_NEAR(dx[d], ((a >> d) & 1) ? h[d] : 0.0, 1e-12) << "cell " << c << " node " << a << " axis " << d;
+        EXPECT_NEAR(dx[d], ((a >> d) & 1) ? h[d] : 0.0, 1e-12)
+            << "cell " << c << " node " << a << " axis " << d;
     }
   }
 }
@@ -87,7 +89,8 @@ void expect_named_sets(const Mesh& m, const Vec3& lo, const Vec3& hi) {
       for (const CellFace& cf : m.face_sets.at(name)) {
         EXPECT_EQ(cf.face, 2 * d + side) << name;
         for (int a : face_nodes(m.cell_type(), cf.face))
-          EXPECT_EQ(m.node(m.cell(cf.cell)[static_cast<std::size_t>(a)])[d], plane) << name << " cell " << cf.cell;
+          EXPECT_EQ(m.node(m.cell(cf.cell)[static_cast<std::size_t>(a)])[d], plane)
+              << name << " cell " << cf.cell;
         // The cell lies on the inner side of its face.
         const double inward = m.cell_centroid(cf.cell)[d] - plane;
         EXPECT_TRUE(side == 0 ? inward > 0 : inward < 0) << name;
@@ -197,9 +200,9 @@ TEST(MeshBox, Hex3D) {
   EXPECT_EQ(m.node_sets.at("zmin").size(), 20u);  // 5 × 4
   EXPECT_EQ(m.node_sets.at("zmax").size(), 20u);
   EXPECT_EQ(m.node_sets.at("boundary").size(), 60u - 3u * 2u * 1u);  // all minus interior
-  EXPECT_EQ(m.face_sets.at("xmin").size(), 6u);   // 3 × 2
-  EXPECT_EQ(m.face_sets.at("ymax").size(), 8u);   // 4 × 2
-  EXPECT_EQ(m.face_sets.at("zmin").size(), 12u);  // 4 × 3
+  EXPECT_EQ(m.face_sets.at("xmin").size(), 6u);                      // 3 × 2
+  EXPECT_EQ(m.face_sets.at("ymax").size(), 8u);                      // 4 × 2
+  EXPECT_EQ(m.face_sets.at("zmin").size(), 12u);                     // 4 × 3
   EXPECT_EQ(m.face_sets.at("boundary").size(), 52u);
   const Vec3 h = (hi3 - lo3).cwiseQuotient(Vec3(4, 3, 2));
   expect_named_sets(m, lo3, hi3);

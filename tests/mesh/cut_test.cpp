@@ -1,7 +1,7 @@
 // Pre-crack splitting along element faces and the cut's geometry queries.
+#include "perimorph/mesh/cut.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/mesh/box.hpp"
-#include "perimorph/mesh/cut.hpp"
 
 #include <gtest/gtest.h>
 
@@ -38,7 +38,9 @@ Cut cut3(Vec3 origin, Vec3 edge1, Vec3 edge2) {
   return c;
 }
 
-std::set<Index> nodes_of(const Mesh& m, Index c) { return {m.cell(c).begin(), m.cell(c).end()}; }
+std::set<Index> nodes_of(const Mesh& m, Index c) {
+  return {m.cell(c).begin(), m.cell(c).end()};
+}
 
 std::set<Index> shared(const Mesh& m, Index a, Index b) {
   std::set<Index> out;
@@ -54,7 +56,8 @@ void expect_consistent(const Mesh& m) {
     EXPECT_EQ(nodes_of(m, c).size(), static_cast<std::size_t>(m.nodes_per_cell())) << "cell " << c;
     for (Index n : m.cell(c)) used[static_cast<std::size_t>(n)] = 1;
   }
-  for (Index n = 0; n < m.num_nodes(); ++n) EXPECT_TRUE(used[static_cast<std::size_t>(n)]) << "orphan node " << n;
+  for (Index n = 0; n < m.num_nodes(); ++n)
+    EXPECT_TRUE(used[static_cast<std::size_t>(n)]) << "orphan node " << n;
 }
 
 // 4×4 quads on [0,4]²: node (i, j) = i + 5 j, cell (i, j) = i + 4 j.
@@ -195,13 +198,13 @@ TEST(MeshCut, Crosses2D) {
   EXPECT_TRUE(c.crosses(Vec3(-0.5, 1, 0), Vec3(1.5, 3.5, 0)));  // oblique, crossing at x = 0.3
   EXPECT_FALSE(c.crosses(Vec3(0.5, 2.5, 0), Vec3(1.5, 3, 0)));  // same side
   EXPECT_FALSE(c.crosses(Vec3(0.5, 1.0, 0), Vec3(1.5, 1.9, 0)));
-  EXPECT_FALSE(c.crosses(Vec3(3, 1, 0), Vec3(3, 3, 0)));        // beyond the end
-  EXPECT_FALSE(c.crosses(Vec3(-1, 1, 0), Vec3(-1, 3, 0)));      // before the start
-  EXPECT_FALSE(c.crosses(Vec3(2.5, 1, 0), Vec3(3.5, 3, 0)));    // would cross the line at x = 3
-  EXPECT_TRUE(c.crosses(Vec3(2, 1, 0), Vec3(2, 3, 0)));         // through the end point (closed)
+  EXPECT_FALSE(c.crosses(Vec3(3, 1, 0), Vec3(3, 3, 0)));      // beyond the end
+  EXPECT_FALSE(c.crosses(Vec3(-1, 1, 0), Vec3(-1, 3, 0)));    // before the start
+  EXPECT_FALSE(c.crosses(Vec3(2.5, 1, 0), Vec3(3.5, 3, 0)));  // would cross the line at x = 3
+  EXPECT_TRUE(c.crosses(Vec3(2, 1, 0), Vec3(2, 3, 0)));       // through the end point (closed)
   EXPECT_FALSE(c.crosses(Vec3(2.001, 1, 0), Vec3(2.001, 3, 0)));
-  EXPECT_TRUE(c.crosses(Vec3(0.5, 2, 0), Vec3(0.5, 3, 0)));     // touching counts
-  EXPECT_FALSE(c.crosses(Vec3(0, 2, 0), Vec3(1, 2, 0)));        // lying in the cut
+  EXPECT_TRUE(c.crosses(Vec3(0.5, 2, 0), Vec3(0.5, 3, 0)));  // touching counts
+  EXPECT_FALSE(c.crosses(Vec3(0, 2, 0), Vec3(1, 2, 0)));     // lying in the cut
   // A tilted cut from (0,0) to (2,2).
   const Cut d = cut2(Vec3(0, 0, 0), Vec3(2, 2, 0));
   EXPECT_TRUE(d.crosses(Vec3(0, 1.5, 0), Vec3(1.5, 0, 0)));
@@ -214,16 +217,16 @@ TEST(MeshCut, Crosses3D) {
   EXPECT_TRUE(c.crosses(Vec3(1, 1, 1), Vec3(1, 1, 3)));
   EXPECT_TRUE(c.crosses(Vec3(0.5, 0.5, 1), Vec3(1.5, 3.5, 3)));  // through (1, 2, 2)
   EXPECT_FALSE(c.crosses(Vec3(1, 1, 2.5), Vec3(1, 1, 3)));
-  EXPECT_FALSE(c.crosses(Vec3(3, 1, 1), Vec3(3, 1, 3)));         // beyond edge1
-  EXPECT_FALSE(c.crosses(Vec3(1, 5, 1), Vec3(1, 5, 3)));         // beyond edge2
+  EXPECT_FALSE(c.crosses(Vec3(3, 1, 1), Vec3(3, 1, 3)));  // beyond edge1
+  EXPECT_FALSE(c.crosses(Vec3(1, 5, 1), Vec3(1, 5, 3)));  // beyond edge2
   EXPECT_FALSE(c.crosses(Vec3(1, -0.1, 1), Vec3(1, -0.1, 3)));
-  EXPECT_TRUE(c.crosses(Vec3(2, 4, 1), Vec3(2, 4, 3)));          // corner, closed
-  EXPECT_FALSE(c.crosses(Vec3(0.5, 1, 2), Vec3(1.5, 1, 2)));     // in the plane
+  EXPECT_TRUE(c.crosses(Vec3(2, 4, 1), Vec3(2, 4, 3)));       // corner, closed
+  EXPECT_FALSE(c.crosses(Vec3(0.5, 1, 2), Vec3(1.5, 1, 2)));  // in the plane
   // A sheared parallelogram: origin 0, edges (1,0,0) and (1,1,0) in z = 0.
   const Cut p = cut3(Vec3::Zero(), Vec3(1, 0, 0), Vec3(1, 1, 0));
-  EXPECT_TRUE(p.crosses(Vec3(1.2, 0.5, -1), Vec3(1.2, 0.5, 1)));   // s = 0.7, t = 0.5
-  EXPECT_FALSE(p.crosses(Vec3(0.2, 0.5, -1), Vec3(0.2, 0.5, 1)));  // s = -0.3, inside the bounding box
-  EXPECT_TRUE(p.crosses(Vec3(1.9, 0.95, -1), Vec3(1.9, 0.95, 1))); // s = 0.95, t = 0.95
+  EXPECT_TRUE(p.crosses(Vec3(1.2, 0.5, -1), Vec3(1.2, 0.5, 1)));    // s = 0.7, t = 0.5
+  EXPECT_FALSE(p.crosses(Vec3(0.2, 0.5, -1), Vec3(0.2, 0.5, 1)));   // s = -0.3, inside the bounding box
+  EXPECT_TRUE(p.crosses(Vec3(1.9, 0.95, -1), Vec3(1.9, 0.95, 1)));  // s = 0.95, t = 0.95
   EXPECT_FALSE(p.crosses(Vec3(1.9, 1.05, -1), Vec3(1.9, 1.05, 1)));
 }
 

@@ -5,8 +5,8 @@
 // C_ijkl = ∫_H c(ξ) ξiξjξkξl/(2|ξ|²) dξ in polar/spherical coordinates compared
 // with the isotropic (λ = μ) local stiffness.
 
-#include "perimorph/fem/material.hpp"
 #include "perimorph/peridynamics/micromodulus.hpp"
+#include "perimorph/fem/material.hpp"
 
 #include <gtest/gtest.h>
 
@@ -35,10 +35,14 @@ double simpson(const std::function<double(double)>& f, double a, double b, int n
 /// φ(r) written independently of the library (no cut-off: used on [0, δ]).
 double phi(KernelShape s, double r, double delta, double l) {
   switch (s) {
-    case KernelShape::constant: return 1.0;
-    case KernelShape::conical: return 1.0 - r / delta;
-    case KernelShape::exponential: return r * r * std::exp(-r / l);
-    case KernelShape::gaussian: return r * r * std::exp(-r * r / (l * l));
+    case KernelShape::constant:
+      return 1.0;
+    case KernelShape::conical:
+      return 1.0 - r / delta;
+    case KernelShape::exponential:
+      return r * r * std::exp(-r / l);
+    case KernelShape::gaussian:
+      return r * r * std::exp(-r * r / (l * l));
   }
   return 0.0;
 }
@@ -74,8 +78,8 @@ Micromodulus kernel(KernelShape s, double delta, double l) {
   return k;
 }
 
-const std::array<KernelShape, 4> all_shapes{KernelShape::constant, KernelShape::conical, KernelShape::exponential,
-                                            KernelShape::gaussian};
+const std::array<KernelShape, 4> all_shapes{KernelShape::constant, KernelShape::conical,
+                                            KernelShape::exponential, KernelShape::gaussian};
 
 TEST(PeridynamicsKernel, ShapeValuesAndCutOff) {
   const double delta = 1.7, l = 0.4;
@@ -113,8 +117,10 @@ TEST(PeridynamicsKernel, ShapeMomentsExponentialAndGaussian) {
         // The closed form and the Simpson rule agree with each other first (the reference is sound) ...
         ASSERT_NEAR(e_simpson, e_closed, 1e-11 * e_closed);
         // ... then the library.
-        EXPECT_NEAR(e.shape_moment(k), e_closed, 1e-12 * e_closed) << "δ " << delta << " l " << l << " k " << k;
-        EXPECT_NEAR(g.shape_moment(k), g_simpson, 1e-11 * g_simpson) << "δ " << delta << " l " << l << " k " << k;
+        EXPECT_NEAR(e.shape_moment(k), e_closed, 1e-12 * e_closed)
+            << "δ " << delta << " l " << l << " k " << k;
+        EXPECT_NEAR(g.shape_moment(k), g_simpson, 1e-11 * g_simpson)
+            << "δ " << delta << " l " << l << " k " << k;
       }
 }
 
@@ -122,8 +128,8 @@ TEST(PeridynamicsKernel, OneDimensionalConstantKernelIs3EOverDeltaCubed) {
   // THEORY (2.44): c = 3E/δ³; G_c = ½ s² ∫ c r³ = (3Eδ/8) s².
   for (double delta : {0.1, 1.0, 3.0}) {
     const double E = 210.0;
-    const auto cal = peridynamics::calibrate_isotropic(kernel(KernelShape::constant, delta, 1.0), 1,
-                                                       PlaneMode::strain, E);
+    const auto cal =
+        peridynamics::calibrate_isotropic(kernel(KernelShape::constant, delta, 1.0), 1, PlaneMode::strain, E);
     EXPECT_NEAR(cal.scale, 3.0 * E / (delta * delta * delta), 1e-13 * cal.scale);
     EXPECT_EQ(cal.E, E);
     EXPECT_TRUE(std::isnan(cal.nu));
@@ -194,7 +200,8 @@ TEST(PeridynamicsKernel, CauchyProblemAcceptsOnlyTheCentralForceRatio) {
   EXPECT_EQ(cauchy_problem(3, PlaneMode::strain, 0.25), "");
   EXPECT_EQ(cauchy_problem(2, PlaneMode::strain, 0.25), "");
   EXPECT_EQ(cauchy_problem(2, PlaneMode::stress, 1.0 / 3.0), "");
-  for (double nu : {-0.5, 0.0, 0.25, 0.3, 0.49}) EXPECT_EQ(cauchy_problem(1, PlaneMode::strain, nu), "") << nu;
+  for (double nu : {-0.5, 0.0, 0.25, 0.3, 0.49})
+    EXPECT_EQ(cauchy_problem(1, PlaneMode::strain, nu), "") << nu;
 
   struct Bad {
     int dim;
@@ -203,11 +210,12 @@ TEST(PeridynamicsKernel, CauchyProblemAcceptsOnlyTheCentralForceRatio) {
     const char* required;
     const char* setting;
   };
-  for (const Bad& b : {Bad{3, PlaneMode::strain, 0.3, "1/4", "3D"}, Bad{3, PlaneMode::strain, 1.0 / 3.0, "1/4", "3D"},
-                       Bad{2, PlaneMode::strain, 0.2, "1/4", "plane strain"},
-                       Bad{2, PlaneMode::strain, 1.0 / 3.0, "1/4", "plane strain"},
-                       Bad{2, PlaneMode::stress, 0.25, "1/3", "plane stress"},
-                       Bad{2, PlaneMode::stress, 0.3, "1/3", "plane stress"}}) {
+  for (const Bad& b :
+       {Bad{3, PlaneMode::strain, 0.3, "1/4", "3D"}, Bad{3, PlaneMode::strain, 1.0 / 3.0, "1/4", "3D"},
+        Bad{2, PlaneMode::strain, 0.2, "1/4", "plane strain"},
+        Bad{2, PlaneMode::strain, 1.0 / 3.0, "1/4", "plane strain"},
+        Bad{2, PlaneMode::stress, 0.25, "1/3", "plane stress"},
+        Bad{2, PlaneMode::stress, 0.3, "1/3", "plane stress"}}) {
     const std::string m = cauchy_problem(b.dim, b.mode, b.nu);
     SCOPED_TRACE(m);
     EXPECT_NE(m.find("Cauchy"), std::string::npos);
@@ -232,13 +240,15 @@ double voigt_component(const Eigen::MatrixXd& C, int dim, int i, int j, int k, i
 /// these trigonometric polynomials) and Simpson in θ (3D).
 std::array<double, 81> bond_tensor(KernelShape s, double delta, double l, double scale, int dim) {
   const double radial =
-      0.5 * scale * simpson([&](double r) { return phi(s, r, delta, l) * std::pow(r, dim + 1); }, 0.0, delta, 4000);
+      0.5 * scale *
+      simpson([&](double r) { return phi(s, r, delta, l) * std::pow(r, dim + 1); }, 0.0, delta, 4000);
   std::array<double, 81> T{};
   auto add = [&](const Vec3& n, double w) {
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
         for (int k = 0; k < 3; ++k)
-          for (int m = 0; m < 3; ++m) T[static_cast<std::size_t>(((i * 3 + j) * 3 + k) * 3 + m)] += w * n[i] * n[j] * n[k] * n[m];
+          for (int m = 0; m < 3; ++m)
+            T[static_cast<std::size_t>(((i * 3 + j) * 3 + k) * 3 + m)] += w * n[i] * n[j] * n[k] * n[m];
   };
   const int nphi = 64;
   const double dphi = 2.0 * pi / nphi;
@@ -252,7 +262,8 @@ std::array<double, 81> bond_tensor(KernelShape s, double delta, double l, double
       const double w = (t == 0 || t == nth ? 1.0 : t % 2 == 1 ? 4.0 : 2.0) * dth / 3.0 * std::sin(th);
       if (w == 0.0) continue;
       for (int p = 0; p < nphi; ++p)
-        add(Vec3(std::sin(th) * std::cos(p * dphi), std::sin(th) * std::sin(p * dphi), std::cos(th)), radial * w * dphi);
+        add(Vec3(std::sin(th) * std::cos(p * dphi), std::sin(th) * std::sin(p * dphi), std::cos(th)),
+            radial * w * dphi);
     }
   }
   return T;
@@ -267,12 +278,13 @@ TEST(PeridynamicsKernel, CalibratedScaleReproducesIsotropicStiffness) {
         for (PlaneMode mode : {PlaneMode::strain, PlaneMode::stress}) {
           if (dim == 3 && mode == PlaneMode::stress) continue;
           SCOPED_TRACE(::testing::Message() << to_string(s) << " l " << l << " dim " << dim
-                                          << (mode == PlaneMode::strain ? " strain" : " stress"));
+                                            << (mode == PlaneMode::strain ? " strain" : " stress"));
           const auto cal = peridynamics::calibrate_isotropic(kernel(s, delta, l), dim, mode, E);
           const auto T = bond_tensor(s, delta, l, cal.scale, dim);
           // Isotropic λ = μ tensor, and the library's reduced local stiffness for (E, ν = cal.nu).
           const double mu = cal.lame;
-          const Eigen::MatrixXd C0 = fem::reduce_stiffness(fem::stiffness_voigt(fem::IsotropicElasticity{E, cal.nu}), dim, mode);
+          const Eigen::MatrixXd C0 =
+              fem::reduce_stiffness(fem::stiffness_voigt(fem::IsotropicElasticity{E, cal.nu}), dim, mode);
           for (int i = 0; i < dim; ++i)
             for (int j = 0; j < dim; ++j)
               for (int k = 0; k < dim; ++k)

@@ -5,8 +5,8 @@
 // between the cells removes exactly the bonds that cross it, and the block is
 // symmetric positive semi-definite with rigid motions in its null space.
 
-#include "perimorph/mesh/mesh.hpp"
 #include "perimorph/peridynamics/pair_kernel.hpp"
+#include "perimorph/mesh/mesh.hpp"
 
 #include <gtest/gtest.h>
 
@@ -72,10 +72,12 @@ Eigen::MatrixXd brute_force(const TestCell& E, const TestCell& F, bool same_cell
     for (int h = same_cell ? g + 1 : 0; h < F.count(); ++h) {
       const Vec3 xi = F.x[static_cast<std::size_t>(h)] - E.x[static_cast<std::size_t>(g)];
       const double r = xi.norm();
-      if (r == 0.0 || r * r >= c.horizon * c.horizon * (1.0 - 1e-10)) continue;  // open horizon, ties left out
+      if (r == 0.0 || r * r >= c.horizon * c.horizon * (1.0 - 1e-10))
+        continue;  // open horizon, ties left out
       if (crosses(E.x[static_cast<std::size_t>(g)], F.x[static_cast<std::size_t>(h)])) continue;
       const double abar =
-          unit_alpha ? 1.0 : 0.5 * (E.alpha[static_cast<std::size_t>(g)] + F.alpha[static_cast<std::size_t>(h)]);
+          unit_alpha ? 1.0
+                     : 0.5 * (E.alpha[static_cast<std::size_t>(g)] + F.alpha[static_cast<std::size_t>(h)]);
       if (abar == 0.0) continue;
       ++bonds;
       const Vec3 e = xi / r;
@@ -98,7 +100,8 @@ Eigen::MatrixXd kernel_block(const TestCell& E, const TestCell& F, bool same_cel
   CellPoints e = E.view(), f = F.view();
   if (unit_alpha) e.alpha = f.alpha = nullptr;
   bonds = peridynamics::pair_stiffness<D>(e, f, same_cell, c, cuts, unit_alpha, block.data());
-  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(block.data(), n, n);
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      block.data(), n, n);
 }
 
 Micromodulus make_kernel(KernelShape s, double delta, double l, double scale) {
@@ -117,7 +120,8 @@ double rel_diff(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
   return (A - B).cwiseAbs().maxCoeff() / scale;
 }
 
-// ---- 1D: two-node bars, 3 points per cell -------------------------------------------------------------------
+// ---- 1D: two-node bars, 3 points per cell
+// -------------------------------------------------------------------
 
 TestCell bar(double lower, std::vector<double> xi, std::vector<double> alpha) {
   std::vector<Vec3> p;
@@ -130,11 +134,13 @@ TestCell bar(double lower, std::vector<double> xi, std::vector<double> alpha) {
 TEST(PeridynamicsPairKernel, OneDimensionalAgainstBruteForce) {
   const TestCell E = bar(0.0, {-0.7, 0.1, 0.8}, {0.0, 0.4, 1.0});
   const TestCell F = bar(1.0, {-0.5, 0.3, 0.9}, {0.2, 0.7, 1.0});
-  for (KernelShape s : {KernelShape::constant, KernelShape::conical, KernelShape::exponential, KernelShape::gaussian})
+  for (KernelShape s :
+       {KernelShape::constant, KernelShape::conical, KernelShape::exponential, KernelShape::gaussian})
     for (double delta : {0.5, 1.2, 5.0}) {
       const auto c = make_kernel(s, delta, delta / 3.0, 17.0);
       for (bool same : {false, true}) {
-        SCOPED_TRACE(::testing::Message() << to_string(s) << " δ " << delta << (same ? " same cell" : " two cells"));
+        SCOPED_TRACE(::testing::Message()
+                     << to_string(s) << " δ " << delta << (same ? " same cell" : " two cells"));
         std::size_t nb = 0, nk = 0;
         const Eigen::MatrixXd B = brute_force<1>(E, same ? E : F, same, c, false, no_cut, nb);
         const Eigen::MatrixXd K = kernel_block<1>(E, same ? E : F, same, c, {}, false, nk);
@@ -148,7 +154,8 @@ TEST(PeridynamicsPairKernel, OneDimensionalAgainstBruteForce) {
     }
 }
 
-// ---- 2D: four-node quads, 3 points per cell -----------------------------------------------------------------
+// ---- 2D: four-node quads, 3 points per cell
+// -----------------------------------------------------------------
 
 TestCell quad(Vec3 lower, double h, std::vector<double> alpha) {
   const std::vector<Vec3> xi{Vec3(-0.6, -0.3, 0), Vec3(0.5, -0.8, 0), Vec3(0.2, 0.7, 0)};
@@ -224,11 +231,13 @@ TEST(PeridynamicsPairKernel, BondsAtOrBeyondTheHorizonAreLeftOut) {
   const TestCell F = bar(1.0, {0.0}, {1.0});  // x = 1.5
   std::size_t n = 0;
   for (double delta : {0.5, 1.0, 1.0 + 1e-12}) {
-    const Eigen::MatrixXd K = kernel_block<1>(E, F, false, make_kernel(KernelShape::constant, delta, 1, 1), {}, false, n);
+    const Eigen::MatrixXd K =
+        kernel_block<1>(E, F, false, make_kernel(KernelShape::constant, delta, 1, 1), {}, false, n);
     EXPECT_EQ(n, 0u) << delta;
     EXPECT_EQ(K.cwiseAbs().maxCoeff(), 0.0) << delta;
   }
-  const Eigen::MatrixXd K = kernel_block<1>(E, F, false, make_kernel(KernelShape::constant, 1.0 + 1e-9, 1, 1), {}, false, n);
+  const Eigen::MatrixXd K =
+      kernel_block<1>(E, F, false, make_kernel(KernelShape::constant, 1.0 + 1e-9, 1, 1), {}, false, n);
   EXPECT_EQ(n, 1u);
   // One bond, e = +1, W = 0.3², c = 1, N = (½, ½) at both points: K = 0.09 · b bᵀ, b = (−½, −½, ½, ½).
   Eigen::VectorXd b(4);

@@ -167,7 +167,8 @@ TEST(PeridynamicsQuadratureEnergy, BulkTensorErrorTable) {
         // settings. Regression bound for the exponential kernel at δ/h ≥ 3.5 (2D)
         // and δ/h = 3 (3D), 3 points per direction or more (observed ≤ 1.8%).
         if (k.shape == KernelShape::exponential && (row.ratio >= 3.5 || row.dim == 3)) {
-          for (int q = 3; q <= max_order; ++q) EXPECT_LT(e[static_cast<std::size_t>(q - 1)].cell, 3e-2) << q << " pt/dir";
+          for (int q = 3; q <= max_order; ++q)
+            EXPECT_LT(e[static_cast<std::size_t>(q - 1)].cell, 3e-2) << q << " pt/dir";
         }
       }
     }

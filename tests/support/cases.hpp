@@ -24,8 +24,7 @@ inline casefile::CaseConfig box_case(int dim, std::array<Index, 3> cells, Vec3 e
 
 /// Adds a [nonlocal] section.
 inline void add_nonlocal(casefile::CaseConfig& c, casefile::KernelKind kernel, double horizon, double length,
-                         int quadrature,
-                         casefile::Discretization dg = casefile::Discretization::continuous) {
+                         int quadrature, casefile::Discretization dg = casefile::Discretization::continuous) {
   c.nonlocal.enabled = true;
   c.nonlocal.kernel = kernel;
   c.nonlocal.horizon = horizon;

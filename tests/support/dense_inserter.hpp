@@ -15,10 +15,11 @@ namespace perimorph::testing {
 /// A[rows[i], cols[j]] += values[i * cols.size() + j] (row-major blocks);
 /// negative row or column indices are skipped, as in PETSc.
 class DenseInserter : public assembly::MatrixInserter {
-public:
+ public:
   explicit DenseInserter(Index n) : A(Eigen::MatrixXd::Zero(n, n)) {}
 
-  void add(std::span<const Index> rows, std::span<const Index> cols, std::span<const double> values) override {
+  void add(std::span<const Index> rows, std::span<const Index> cols,
+           std::span<const double> values) override {
     for (std::size_t i = 0; i < rows.size(); ++i) {
       if (rows[i] < 0) continue;
       for (std::size_t j = 0; j < cols.size(); ++j) {

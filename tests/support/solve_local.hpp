@@ -20,8 +20,8 @@ namespace perimorph::testing {
 /// `fixed_nodes` (mesh nodes). Returns the dof vector.
 inline std::vector<double> solve_local(const assembly::LocalSpace& space, const fem::ConstitutiveField& C,
                                        const std::vector<Index>& fixed_nodes,
-                                       const std::function<Vec3(const Vec3&)>& g, const std::vector<double>& F,
-                                       double rtol = 1e-13) {
+                                       const std::function<Vec3(const Vec3&)>& g,
+                                       const std::vector<double>& F, double rtol = 1e-13) {
   const int dim = space.mesh.dim();
   const Index n = space.dofmap.num_dofs();
   la::Matrix K(assembly::build_sparsity(space.dofmap));

@@ -10,9 +10,12 @@ namespace perimorph::alpha {
 double profile_value(Profile p, double t) {
   t = std::clamp(t, 0.0, 1.0);
   switch (p) {
-    case Profile::heaviside: return t < 0.5 ? 0.0 : 1.0;
-    case Profile::linear: return t;
-    case Profile::cubic: return t * t * (3.0 - 2.0 * t);
+    case Profile::heaviside:
+      return t < 0.5 ? 0.0 : 1.0;
+    case Profile::linear:
+      return t;
+    case Profile::cubic:
+      return t * t * (3.0 - 2.0 * t);
   }
   return 0.0;
 }
@@ -29,8 +32,12 @@ struct DistanceVisitor {
   Vec3 x;
   int dim;
   double operator()(const Interval& s) const { return std::max({s.lower - x.x(), x.x() - s.upper, 0.0}); }
-  double operator()(const Slab& s) const { return std::max(std::abs(s.normal.dot(x - s.point)) - s.half_width, 0.0); }
-  double operator()(const Ball& s) const { return std::max((x - project(s.center, dim)).norm() - s.radius, 0.0); }
+  double operator()(const Slab& s) const {
+    return std::max(std::abs(s.normal.dot(x - s.point)) - s.half_width, 0.0);
+  }
+  double operator()(const Ball& s) const {
+    return std::max((x - project(s.center, dim)).norm() - s.radius, 0.0);
+  }
   double operator()(const Cylinder& s) const {
     const Vec3 r = x - s.point;
     return std::max((r - s.axis * s.axis.dot(r)).norm() - s.radius, 0.0);
@@ -47,7 +54,9 @@ struct DistanceVisitor {
 
 }  // namespace
 
-double distance(const Shape& shape, const Vec3& x, int dim) { return std::visit(DistanceVisitor{project(x, dim), dim}, shape); }
+double distance(const Shape& shape, const Vec3& x, int dim) {
+  return std::visit(DistanceVisitor{project(x, dim), dim}, shape);
+}
 
 AlphaField AlphaField::constant(double value) {
   PERIMORPH_ASSERT(value >= 0.0 && value <= 1.0, "alpha must lie in [0, 1]");
@@ -73,9 +82,12 @@ double AlphaField::operator()(const Vec3& x) const {
   for (const Region& r : regions_) {
     const double d = distance(r.shape, x, dim_);
     double v;
-    if (d <= 0.0) v = 1.0;
-    else if (d >= r.transition) v = 0.0;
-    else v = profile_value(r.profile, 1.0 - d / r.transition);
+    if (d <= 0.0)
+      v = 1.0;
+    else if (d >= r.transition)
+      v = 0.0;
+    else
+      v = profile_value(r.profile, 1.0 - d / r.transition);
     a = std::max(a, v);
     if (a >= 1.0) break;
   }

@@ -58,7 +58,7 @@ struct Region {
 };
 
 class AlphaField {
-public:
+ public:
   /// α ≡ value everywhere (0 or 1, or any constant in [0, 1]).
   static AlphaField constant(double value);
   /// α = max over the regions (0 outside all of them).
@@ -68,7 +68,7 @@ public:
   bool is_constant() const { return regions_.empty(); }
   double constant_value() const { return constant_; }
 
-private:
+ private:
   double constant_ = 0.0;
   int dim_ = 3;
   std::vector<Region> regions_;

@@ -13,7 +13,7 @@ Eigen::MatrixXd lattice_bulk_tensor(const mesh::StructuredLayout& layout, int di
                                     const peridynamics::Micromodulus& kernel) {
   const auto rule = fem::gauss_legendre(dim, n);
   const std::vector<std::array<int, 2>> pairs =
-      dim == 1 ? std::vector<std::array<int, 2>>{{0, 0}}
+      dim == 1   ? std::vector<std::array<int, 2>>{{0, 0}}
       : dim == 2 ? std::vector<std::array<int, 2>>{{0, 0}, {1, 1}, {0, 1}}
                  : std::vector<std::array<int, 2>>{{0, 0}, {1, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}};
   const int nv = fem::voigt_size(dim);
@@ -25,7 +25,9 @@ Eigen::MatrixXd lattice_bulk_tensor(const mesh::StructuredLayout& layout, int di
   }
   auto point = [&](const Vec3& xi, const std::array<long, 3>& cell) {
     Vec3 x = Vec3::Zero();
-    for (int d = 0; d < dim; ++d) x[d] = (static_cast<double>(cell[static_cast<std::size_t>(d)]) + 0.5 * (xi[d] + 1.0)) * layout.spacing[d];
+    for (int d = 0; d < dim; ++d)
+      x[d] =
+          (static_cast<double>(cell[static_cast<std::size_t>(d)]) + 0.5 * (xi[d] + 1.0)) * layout.spacing[d];
     return x;
   };
   const double cutoff = peridynamics::horizon_cutoff_squared(kernel.horizon);

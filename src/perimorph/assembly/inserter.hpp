@@ -12,9 +12,10 @@ namespace perimorph::assembly {
 /// Adds a dense block: A[rows[i], cols[j]] += values[i * cols.size() + j].
 /// Negative row or column indices are skipped (PETSc's convention).
 class MatrixInserter {
-public:
+ public:
   virtual ~MatrixInserter() = default;
-  virtual void add(std::span<const Index> rows, std::span<const Index> cols, std::span<const double> values) = 0;
+  virtual void add(std::span<const Index> rows, std::span<const Index> cols,
+                   std::span<const double> values) = 0;
 };
 
 }  // namespace perimorph::assembly

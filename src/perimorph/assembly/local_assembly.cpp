@@ -18,7 +18,8 @@ template <int D>
 fem::NodeCoords<D> cell_coordinates(const mesh::Mesh& mesh, Index c) {
   fem::NodeCoords<D> X;
   const auto nodes = mesh.cell(c);
-  for (int a = 0; a < fem::q1_nodes<D>; ++a) X.col(a) = mesh.node(nodes[static_cast<std::size_t>(a)]).template head<D>();
+  for (int a = 0; a < fem::q1_nodes<D>; ++a)
+    X.col(a) = mesh.node(nodes[static_cast<std::size_t>(a)]).template head<D>();
   return X;
 }
 
@@ -27,14 +28,16 @@ std::array<Index, fem::element_dofs<D>> cell_dofs(const dofs::DofMap& dofmap, In
   std::array<Index, fem::element_dofs<D>> dofs{};
   const auto nodes = dofmap.cell_nodes(c);
   for (int a = 0; a < fem::q1_nodes<D>; ++a)
-    for (int d = 0; d < D; ++d) dofs[static_cast<std::size_t>(a * D + d)] = nodes[static_cast<std::size_t>(a)] * D + d;
+    for (int d = 0; d < D; ++d)
+      dofs[static_cast<std::size_t>(a * D + d)] = nodes[static_cast<std::size_t>(a)] * D + d;
   return dofs;
 }
 
 template <int D>
 void assemble_elasticity_dim(const LocalSpace& s, const fem::ConstitutiveField& C, MatrixInserter& K,
                              const std::function<bool(Index)>& include) {
-  PERIMORPH_ASSERT(C.points_per_cell() == static_cast<int>(s.rule.size()), "rule and constitutive field disagree");
+  PERIMORPH_ASSERT(C.points_per_cell() == static_cast<int>(s.rule.size()),
+                   "rule and constitutive field disagree");
   const Index ncells = s.mesh.num_cells();
   std::vector<fem::ElementMatrix<D>> blocks(static_cast<std::size_t>(chunk_size));
   std::vector<char> used(static_cast<std::size_t>(chunk_size));
@@ -45,26 +48,29 @@ void assemble_elasticity_dim(const LocalSpace& s, const fem::ConstitutiveField& 
       const auto k = static_cast<std::size_t>(c - first);
       used[k] = !include || include(c);
       if (!used[k]) continue;
-      fem::elasticity_stiffness<D>(cell_coordinates<D>(s.mesh, c), s.rule, [&](int q) { return C.at(c, q); }, s.scale,
-                                   blocks[k]);
+      fem::elasticity_stiffness<D>(
+          cell_coordinates<D>(s.mesh, c), s.rule, [&](int q) { return C.at(c, q); }, s.scale, blocks[k]);
     }
     for (Index c = first; c < last; ++c) {
       const auto k = static_cast<std::size_t>(c - first);
       if (!used[k]) continue;
       const auto dofs = cell_dofs<D>(s.dofmap, c);
       // Eigen is column-major; the inserter takes row-major blocks. K_e is symmetric.
-      K.add(dofs, dofs, std::span<const double>(blocks[k].data(), static_cast<std::size_t>(blocks[k].size())));
+      K.add(dofs, dofs,
+            std::span<const double>(blocks[k].data(), static_cast<std::size_t>(blocks[k].size())));
     }
   }
 }
 
 template <int D>
-void assemble_body_force_dim(const LocalSpace& s, const std::function<Vec3(const Vec3&)>& b, std::span<double> F) {
+void assemble_body_force_dim(const LocalSpace& s, const std::function<Vec3(const Vec3&)>& b,
+                             std::span<double> F) {
   fem::ElementVector<D> f;
   for (Index c = 0; c < s.mesh.num_cells(); ++c) {
     fem::body_force_load<D>(cell_coordinates<D>(s.mesh, c), s.rule, b, s.scale, f);
     const auto dofs = cell_dofs<D>(s.dofmap, c);
-    for (int i = 0; i < fem::element_dofs<D>; ++i) F[static_cast<std::size_t>(dofs[static_cast<std::size_t>(i)])] += f[i];
+    for (int i = 0; i < fem::element_dofs<D>; ++i)
+      F[static_cast<std::size_t>(dofs[static_cast<std::size_t>(i)])] += f[i];
   }
 }
 
@@ -72,18 +78,22 @@ template <int D>
 void assemble_traction_dim(const LocalSpace& s, std::span<const mesh::CellFace> faces, const Vec3& t,
                            std::span<double> F) {
   constexpr int nf = fem::q1_nodes<D - 1>;
-  const int n1d = std::max(1, static_cast<int>(std::lround(std::pow(static_cast<double>(s.rule.size()), 1.0 / D))));
-  std::vector<fem::QuadraturePoint> face_rule = D == 1 ? std::vector<fem::QuadraturePoint>{{Vec3::Zero(), 1.0}}
-                                                       : fem::gauss_legendre(D - 1, n1d);
+  const int n1d =
+      std::max(1, static_cast<int>(std::lround(std::pow(static_cast<double>(s.rule.size()), 1.0 / D))));
+  std::vector<fem::QuadraturePoint> face_rule =
+      D == 1 ? std::vector<fem::QuadraturePoint>{{Vec3::Zero(), 1.0}} : fem::gauss_legendre(D - 1, n1d);
   for (const mesh::CellFace& cf : faces) {
     const auto local = mesh::face_nodes(s.mesh.cell_type(), cf.face);
     Eigen::Matrix<double, 3, nf> Y;
-    for (int a = 0; a < nf; ++a) Y.col(a) = s.mesh.node(s.mesh.cell(cf.cell)[static_cast<std::size_t>(local[static_cast<std::size_t>(a)])]);
+    for (int a = 0; a < nf; ++a)
+      Y.col(a) =
+          s.mesh.node(s.mesh.cell(cf.cell)[static_cast<std::size_t>(local[static_cast<std::size_t>(a)])]);
     const auto f = fem::face_traction_load<D>(Y, face_rule, t, s.scale);
     const auto nodes = s.dofmap.cell_nodes(cf.cell);
     for (int a = 0; a < nf; ++a)
       for (int d = 0; d < D; ++d)
-        F[static_cast<std::size_t>(nodes[static_cast<std::size_t>(local[static_cast<std::size_t>(a)])] * D + d)] += f[a * D + d];
+        F[static_cast<std::size_t>(nodes[static_cast<std::size_t>(local[static_cast<std::size_t>(a)])] * D +
+                                   d)] += f[a * D + d];
   }
 }
 
@@ -91,12 +101,14 @@ template <int D>
 fem::ElementVector<D> gather(const dofs::DofMap& dofmap, Index c, std::span<const double> u) {
   fem::ElementVector<D> ue;
   const auto dofs = cell_dofs<D>(dofmap, c);
-  for (int i = 0; i < fem::element_dofs<D>; ++i) ue[i] = u[static_cast<std::size_t>(dofs[static_cast<std::size_t>(i)])];
+  for (int i = 0; i < fem::element_dofs<D>; ++i)
+    ue[i] = u[static_cast<std::size_t>(dofs[static_cast<std::size_t>(i)])];
   return ue;
 }
 
 template <int D>
-CellFields cell_strain_stress_dim(const LocalSpace& s, const fem::ConstitutiveField& C, std::span<const double> u) {
+CellFields cell_strain_stress_dim(const LocalSpace& s, const fem::ConstitutiveField& C,
+                                  std::span<const double> u) {
   constexpr int nv = fem::voigt_dim<D>;
   const Index ncells = s.mesh.num_cells();
   CellFields out;
@@ -115,7 +127,8 @@ CellFields cell_strain_stress_dim(const LocalSpace& s, const fem::ConstitutiveFi
     for (std::size_t q = 0; q < s.rule.size(); ++q) {
       const double dv = s.rule[q].weight * fem::q1_physical_gradients<D>(X, s.rule[q].xi, g);
       const fem::VoigtVector<D> eps = fem::strain_displacement<D>(g) * ue;
-      const fem::VoigtVector<D> sig = Eigen::Map<const fem::VoigtMatrix<D>>(C.at(c, static_cast<int>(q))) * eps;
+      const fem::VoigtVector<D> sig =
+          Eigen::Map<const fem::VoigtMatrix<D>>(C.at(c, static_cast<int>(q))) * eps;
       eps_sum += eps * dv;
       sig_sum += sig * dv;
       energy += 0.5 * sig.dot(eps) * dv;
@@ -141,9 +154,12 @@ std::vector<double> strain_at_dim(const LocalSpace& s, Index c, const Vec3& xi, 
 template <class F>
 decltype(auto) dispatch(int dim, F&& f) {
   switch (dim) {
-    case 1: return f(std::integral_constant<int, 1>{});
-    case 2: return f(std::integral_constant<int, 2>{});
-    default: return f(std::integral_constant<int, 3>{});
+    case 1:
+      return f(std::integral_constant<int, 1>{});
+    case 2:
+      return f(std::integral_constant<int, 2>{});
+    default:
+      return f(std::integral_constant<int, 3>{});
   }
 }
 
@@ -154,7 +170,8 @@ void assemble_elasticity(const LocalSpace& space, const fem::ConstitutiveField& 
   dispatch(space.mesh.dim(), [&](auto D) { assemble_elasticity_dim<D()>(space, C, K, include); });
 }
 
-void assemble_body_force(const LocalSpace& space, const std::function<Vec3(const Vec3&)>& b, std::span<double> F) {
+void assemble_body_force(const LocalSpace& space, const std::function<Vec3(const Vec3&)>& b,
+                         std::span<double> F) {
   dispatch(space.mesh.dim(), [&](auto D) { assemble_body_force_dim<D()>(space, b, F); });
 }
 
@@ -163,7 +180,8 @@ void assemble_traction(const LocalSpace& space, std::span<const mesh::CellFace> 
   dispatch(space.mesh.dim(), [&](auto D) { assemble_traction_dim<D()>(space, faces, t, F); });
 }
 
-CellFields cell_strain_stress(const LocalSpace& space, const fem::ConstitutiveField& C, std::span<const double> u) {
+CellFields cell_strain_stress(const LocalSpace& space, const fem::ConstitutiveField& C,
+                              std::span<const double> u) {
   return dispatch(space.mesh.dim(), [&](auto D) { return cell_strain_stress_dim<D()>(space, C, u); });
 }
 

@@ -38,7 +38,8 @@ void assemble_elasticity(const LocalSpace& space, const fem::ConstitutiveField& 
                          const std::function<bool(Index)>& include = {});
 
 /// F += ∫ N b(x) dx over every cell (b: force per volume, mesh coordinates).
-void assemble_body_force(const LocalSpace& space, const std::function<Vec3(const Vec3&)>& b, std::span<double> F);
+void assemble_body_force(const LocalSpace& space, const std::function<Vec3(const Vec3&)>& b,
+                         std::span<double> F);
 
 /// F += ∫ N t dS over the given faces for a constant traction t (force per area;
 /// per length in 2D before the thickness scale).
@@ -52,7 +53,8 @@ struct CellFields {
   std::vector<double> strain, stress;
   std::vector<double> energy_density;  ///< 1/2 σ:ε averaged over the cell
 };
-CellFields cell_strain_stress(const LocalSpace& space, const fem::ConstitutiveField& C, std::span<const double> u);
+CellFields cell_strain_stress(const LocalSpace& space, const fem::ConstitutiveField& C,
+                              std::span<const double> u);
 
 /// Strain at point ξ of cell c for the dof vector u (voigt_size(dim) values).
 std::vector<double> strain_at(const LocalSpace& space, Index c, const Vec3& xi, std::span<const double> u);

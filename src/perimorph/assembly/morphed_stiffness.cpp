@@ -35,8 +35,8 @@ Vec3 physical_point(const mesh::Mesh& mesh, Index c, const Vec3& xi) {
 }  // namespace
 
 Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const Index> cells,
-                                 const bonds::NonlocalPoints& points, const peridynamics::Micromodulus& kernel,
-                                 const mesh::Mesh& mesh) {
+                                 const bonds::NonlocalPoints& points,
+                                 const peridynamics::Micromodulus& kernel, const mesh::Mesh& mesh) {
   const int dim = points.dim;
   const auto pairs = voigt_pairs(dim);
   const int nv = static_cast<int>(pairs.size());
@@ -66,7 +66,8 @@ Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const
 MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::QuadraturePoint> rule,
                                  const bonds::NonlocalPoints& points, const bonds::CellGraph& graph,
                                  const peridynamics::Micromodulus& kernel, const alpha::AlphaField& alpha,
-                                 const Eigen::MatrixXd& C0, CouplingRule rule_kind, fem::ConstitutiveField& field) {
+                                 const Eigen::MatrixXd& C0, CouplingRule rule_kind,
+                                 fem::ConstitutiveField& field) {
   const Index ncells = mesh.num_cells();
   const int nq = static_cast<int>(rule.size());
   const int nv = fem::voigt_size(mesh.dim());
@@ -100,13 +101,17 @@ MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::Qu
       uniform = uniform && a == 0.0 && (Cq.array() == C0.array()).all();
       C[static_cast<std::size_t>(q)] = std::move(Cq);
     }
-    if (all_zero) out.purely_nonlocal[static_cast<std::size_t>(c)] = 1;
-    else if (!uniform) per_point[static_cast<std::size_t>(c)] = std::move(C);
+    if (all_zero)
+      out.purely_nonlocal[static_cast<std::size_t>(c)] = 1;
+    else if (!uniform)
+      per_point[static_cast<std::size_t>(c)] = std::move(C);
   }
   for (Index c = 0; c < ncells; ++c) {
     auto& C = per_point[static_cast<std::size_t>(c)];
-    if (out.purely_nonlocal[static_cast<std::size_t>(c)]) field.set_cell(c, id_zero);
-    else if (C.empty()) field.set_cell(c, id_local);
+    if (out.purely_nonlocal[static_cast<std::size_t>(c)])
+      field.set_cell(c, id_zero);
+    else if (C.empty())
+      field.set_cell(c, id_local);
     else {
       field.set_cell_points(c, C);
       ++out.morphing_cells;

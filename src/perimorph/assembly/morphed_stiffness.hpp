@@ -45,8 +45,8 @@ struct MorphedStiffness {
 /// (Voigt, model dimension), summed over the non-local points of the given
 /// cells, bonds crossing a cut excluded. Exposed for tests.
 Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const Index> cells,
-                                 const bonds::NonlocalPoints& points, const peridynamics::Micromodulus& kernel,
-                                 const mesh::Mesh& mesh);
+                                 const bonds::NonlocalPoints& points,
+                                 const peridynamics::Micromodulus& kernel, const mesh::Mesh& mesh);
 
 /// Fills `field` (sized for `rule`) with C(x) for every cell, from the
 /// reference stiffness C0 (Voigt, model dimension). `graph` must hold, for each
@@ -54,6 +54,7 @@ Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const
 MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::QuadraturePoint> rule,
                                  const bonds::NonlocalPoints& points, const bonds::CellGraph& graph,
                                  const peridynamics::Micromodulus& kernel, const alpha::AlphaField& alpha,
-                                 const Eigen::MatrixXd& C0, CouplingRule rule_kind, fem::ConstitutiveField& field);
+                                 const Eigen::MatrixXd& C0, CouplingRule rule_kind,
+                                 fem::ConstitutiveField& field);
 
 }  // namespace perimorph::assembly

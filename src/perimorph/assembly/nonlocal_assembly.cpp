@@ -56,8 +56,8 @@ struct PointBuffer {
 /// The points of cell c, with the formulas of make_nonlocal_points (same
 /// expressions, same order, so the values are bit-identical to the stored ones).
 template <int D>
-void recompute_points(const mesh::Mesh& mesh, Index c, const std::vector<fem::QuadraturePoint>& rule, double scale,
-                      const alpha::AlphaField& alpha, PointBuffer& out) {
+void recompute_points(const mesh::Mesh& mesh, Index c, const std::vector<fem::QuadraturePoint>& rule,
+                      double scale, const alpha::AlphaField& alpha, PointBuffer& out) {
   constexpr int nn = fem::q1_nodes<D>;
   fem::NodeCoords<D> X;
   const auto nodes = mesh.cell(c);
@@ -105,9 +105,12 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
     return p;
   };
   auto unit_pair = [&](Index e, Index f) {
-    return pts.cell_alpha_min[static_cast<std::size_t>(e)] >= 1.0 && pts.cell_alpha_min[static_cast<std::size_t>(f)] >= 1.0;
+    return pts.cell_alpha_min[static_cast<std::size_t>(e)] >= 1.0 &&
+           pts.cell_alpha_min[static_cast<std::size_t>(f)] >= 1.0;
   };
-  auto near = [&](Index e, Index f) { return near_cut[static_cast<std::size_t>(e)] && near_cut[static_cast<std::size_t>(f)]; };
+  auto near = [&](Index e, Index f) {
+    return near_cut[static_cast<std::size_t>(e)] && near_cut[static_cast<std::size_t>(f)];
+  };
   // The plain version: points recomputed per pair from the mesh, the rule and α.
   const bool plain = !options.precomputed_points;
   std::vector<fem::QuadraturePoint> rule;
@@ -121,16 +124,20 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
       recompute_points<D>(s.mesh, 0, rule, s.scale, *s.alpha, b);
       for (int q = 0; q < pts.per_cell; ++q) {
         const std::size_t k = pts.index(0, q);
-        PERIMORPH_ASSERT(b.x[static_cast<std::size_t>(q)] == pts.x[k] && b.weight[static_cast<std::size_t>(q)] == pts.weight[k] &&
-                             b.alpha[static_cast<std::size_t>(q)] == pts.alpha[k],
-                         "precomputed_points = false: NonlocalSpace::alpha or scale differ from those of the points");
+        PERIMORPH_ASSERT(
+            b.x[static_cast<std::size_t>(q)] == pts.x[k] &&
+                b.weight[static_cast<std::size_t>(q)] == pts.weight[k] &&
+                b.alpha[static_cast<std::size_t>(q)] == pts.alpha[k],
+            "precomputed_points = false: NonlocalSpace::alpha or scale differ from those of the points");
       }
     }
   }
   auto compute = [&](Index e, Index f, double* block) {
     const bool unit = options.unit_alpha_shortcut && unit_pair(e, f);
     const auto cuts = near(e, f) ? std::span<const mesh::Cut>(s.mesh.cuts) : std::span<const mesh::Cut>{};
-    if (!plain) return peridynamics::pair_stiffness<D>(cell_points(e), cell_points(f), e == f, s.kernel, cuts, unit, block);
+    if (!plain)
+      return peridynamics::pair_stiffness<D>(cell_points(e), cell_points(f), e == f, s.kernel, cuts, unit,
+                                             block);
     PointBuffer be, bf;
     auto recomputed = [&](Index c, PointBuffer& b) {
       recompute_points<D>(s.mesh, c, rule, s.scale, *s.alpha, b);
@@ -169,7 +176,8 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
   std::vector<std::size_t> cache_bonds(representatives.size());
 #pragma omp parallel for schedule(dynamic, 4)
   for (std::size_t r = 0; r < representatives.size(); ++r)
-    cache_bonds[r] = compute(representatives[r].first, representatives[r].second, cache_blocks.data() + r * max_block);
+    cache_bonds[r] =
+        compute(representatives[r].first, representatives[r].second, cache_blocks.data() + r * max_block);
 
   NonlocalStats stats;
   stats.distinct_blocks = representatives.size();
@@ -216,11 +224,15 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
 
 }  // namespace
 
-NonlocalStats assemble_nonlocal(const NonlocalSpace& space, MatrixInserter& K, const NonlocalOptions& options) {
+NonlocalStats assemble_nonlocal(const NonlocalSpace& space, MatrixInserter& K,
+                                const NonlocalOptions& options) {
   switch (space.mesh.dim()) {
-    case 1: return assemble_dim<1>(space, K, options);
-    case 2: return assemble_dim<2>(space, K, options);
-    default: return assemble_dim<3>(space, K, options);
+    case 1:
+      return assemble_dim<1>(space, K, options);
+    case 2:
+      return assemble_dim<2>(space, K, options);
+    default:
+      return assemble_dim<3>(space, K, options);
   }
 }
 

@@ -68,6 +68,7 @@ struct NonlocalOptions {
 
 /// K += K_nl. Pairs whose cells have α ≡ 0 are skipped. Bonds crossing a
 /// pre-crack cut of the mesh are left out.
-NonlocalStats assemble_nonlocal(const NonlocalSpace& space, MatrixInserter& K, const NonlocalOptions& options = {});
+NonlocalStats assemble_nonlocal(const NonlocalSpace& space, MatrixInserter& K,
+                                const NonlocalOptions& options = {});
 
 }  // namespace perimorph::assembly

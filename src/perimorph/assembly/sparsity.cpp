@@ -19,7 +19,8 @@ SparsityPattern build_sparsity(const dofs::DofMap& dofmap, const bonds::CellGrap
   {
     std::vector<Index> fill(start.begin(), start.end() - 1);
     for (Index c = 0; c < ncells; ++c)
-      for (Index n : dofmap.cell_nodes(c)) node_cells[static_cast<std::size_t>(fill[static_cast<std::size_t>(n)]++)] = c;
+      for (Index n : dofmap.cell_nodes(c))
+        node_cells[static_cast<std::size_t>(fill[static_cast<std::size_t>(n)]++)] = c;
   }
 
   std::vector<std::vector<Index>> rows(nnodes);

@@ -24,7 +24,8 @@ struct SparsityPattern {
   Index num_block_rows() const { return static_cast<Index>(row_offsets.size()) - 1; }
   std::span<const Index> row(Index r) const {
     return {columns.data() + row_offsets[static_cast<std::size_t>(r)],
-            static_cast<std::size_t>(row_offsets[static_cast<std::size_t>(r) + 1] - row_offsets[static_cast<std::size_t>(r)])};
+            static_cast<std::size_t>(row_offsets[static_cast<std::size_t>(r) + 1] -
+                                     row_offsets[static_cast<std::size_t>(r)])};
   }
 };
 

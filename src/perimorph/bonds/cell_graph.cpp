@@ -44,7 +44,8 @@ std::size_t CellGraph::num_pairs() const {
   return n;
 }
 
-CellGraph find_cell_neighbors(const mesh::Mesh& mesh, double horizon, const std::function<bool(Index, Index)>& keep) {
+CellGraph find_cell_neighbors(const mesh::Mesh& mesh, double horizon,
+                              const std::function<bool(Index, Index)>& keep) {
   const int dim = mesh.dim();
   const Index ncells = mesh.num_cells();
   std::vector<Vec3> lo(static_cast<std::size_t>(ncells)), hi(static_cast<std::size_t>(ncells));
@@ -72,9 +73,11 @@ CellGraph find_cell_neighbors(const mesh::Mesh& mesh, double horizon, const std:
   const auto [box_lo, box_hi] = mesh.bounding_box();
   std::array<long, 3> nbins{1, 1, 1};
   for (int d = 0; d < dim; ++d)
-    nbins[static_cast<std::size_t>(d)] = std::max(1L, static_cast<long>(std::floor((box_hi[d] - box_lo[d]) / bin)) + 1);
+    nbins[static_cast<std::size_t>(d)] =
+        std::max(1L, static_cast<long>(std::floor((box_hi[d] - box_lo[d]) / bin)) + 1);
   auto bin_of = [&](const Vec3& x, int d) {
-    return std::clamp(static_cast<long>(std::floor((x[d] - box_lo[d]) / bin)), 0L, nbins[static_cast<std::size_t>(d)] - 1);
+    return std::clamp(static_cast<long>(std::floor((x[d] - box_lo[d]) / bin)), 0L,
+                      nbins[static_cast<std::size_t>(d)] - 1);
   };
   std::unordered_map<long, std::vector<Index>> bins;
   std::vector<std::array<long, 3>> cell_bin(static_cast<std::size_t>(ncells));
@@ -89,8 +92,9 @@ CellGraph find_cell_neighbors(const mesh::Mesh& mesh, double horizon, const std:
   auto close = [&](Index e, Index f) {
     double d2 = 0.0;
     for (int d = 0; d < dim; ++d) {
-      const double gap = std::max({lo[static_cast<std::size_t>(f)][d] - hi[static_cast<std::size_t>(e)][d],
-                                   lo[static_cast<std::size_t>(e)][d] - hi[static_cast<std::size_t>(f)][d], 0.0});
+      const double gap =
+          std::max({lo[static_cast<std::size_t>(f)][d] - hi[static_cast<std::size_t>(e)][d],
+                    lo[static_cast<std::size_t>(e)][d] - hi[static_cast<std::size_t>(f)][d], 0.0});
       d2 += gap * gap;
     }
     return d2 < horizon * horizon;

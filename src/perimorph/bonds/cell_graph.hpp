@@ -26,7 +26,8 @@ struct CellGraph {
   Index num_cells() const { return static_cast<Index>(offsets.size()) - 1; }
   std::span<const Index> row(Index c) const {
     return {neighbors.data() + offsets[static_cast<std::size_t>(c)],
-            static_cast<std::size_t>(offsets[static_cast<std::size_t>(c) + 1] - offsets[static_cast<std::size_t>(c)])};
+            static_cast<std::size_t>(offsets[static_cast<std::size_t>(c) + 1] -
+                                     offsets[static_cast<std::size_t>(c)])};
   }
   /// Number of unordered pairs (E ≤ F).
   std::size_t num_pairs() const;

@@ -58,9 +58,15 @@ NonlocalPoints make_nonlocal_points(const mesh::Mesh& mesh, int n_per_direction,
   const auto rule = fem::gauss_legendre(p.dim, n_per_direction);
   p.per_cell = static_cast<int>(rule.size());
   switch (p.dim) {
-    case 1: fill<1>(mesh, rule, scale, alpha, p); break;
-    case 2: fill<2>(mesh, rule, scale, alpha, p); break;
-    default: fill<3>(mesh, rule, scale, alpha, p); break;
+    case 1:
+      fill<1>(mesh, rule, scale, alpha, p);
+      break;
+    case 2:
+      fill<2>(mesh, rule, scale, alpha, p);
+      break;
+    default:
+      fill<3>(mesh, rule, scale, alpha, p);
+      break;
   }
   return p;
 }

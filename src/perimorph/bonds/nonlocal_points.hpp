@@ -27,7 +27,9 @@ struct NonlocalPoints {
   std::vector<double> cell_alpha_max, cell_alpha_min;
 
   Index num_cells() const { return static_cast<Index>(cell_alpha_max.size()); }
-  std::size_t index(Index c, int q) const { return static_cast<std::size_t>(c) * static_cast<std::size_t>(per_cell) + static_cast<std::size_t>(q); }
+  std::size_t index(Index c, int q) const {
+    return static_cast<std::size_t>(c) * static_cast<std::size_t>(per_cell) + static_cast<std::size_t>(q);
+  }
 };
 
 /// Points of an n-per-direction Gauss–Legendre rule in every cell, with α

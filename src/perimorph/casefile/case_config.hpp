@@ -19,7 +19,7 @@ struct SourceLocation {
   std::string file;
   int line = 0;
   int column = 0;
-  std::string key;  ///< dotted path, e.g. "dirichlet[2].set"
+  std::string key;               ///< dotted path, e.g. "dirichlet[2].set"
   std::string describe() const;  ///< "case.toml:12:5: key 'dirichlet[2].set'"
 };
 

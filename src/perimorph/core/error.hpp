@@ -13,28 +13,27 @@ namespace perimorph {
 
 /// Base class for every error reported to the user.
 class Error : public std::runtime_error {
-public:
+ public:
   using std::runtime_error::runtime_error;
 };
 
 /// A case file (or command-line input) that cannot be run as written.
 class InputError : public Error {
-public:
+ public:
   using Error::Error;
 };
 
 /// The linear solver failed, or a non-finite value appeared in the solution.
 class SolverError : public Error {
-public:
+ public:
   using Error::Error;
 };
 
-[[noreturn]] void assertion_failed(const char* expr, const char* file, int line,
-                                   const std::string& message);
+[[noreturn]] void assertion_failed(const char* expr, const char* file, int line, const std::string& message);
 
 }  // namespace perimorph
 
-#define PERIMORPH_ASSERT(cond, msg)                                                   \
-  do {                                                                                \
-    if (!(cond)) ::perimorph::assertion_failed(#cond, __FILE__, __LINE__, (msg));    \
+#define PERIMORPH_ASSERT(cond, msg)                                               \
+  do {                                                                            \
+    if (!(cond)) ::perimorph::assertion_failed(#cond, __FILE__, __LINE__, (msg)); \
   } while (false)

@@ -28,7 +28,7 @@ namespace perimorph::dofs {
 enum class Continuity : std::uint8_t { continuous = 0, discontinuous = 1, discontinuous_constant = 2 };
 
 class DofMap {
-public:
+ public:
   /// CG on every cell whose flag is continuous, DG on the others. An empty
   /// span means CG everywhere.
   DofMap(const mesh::Mesh& mesh, int block_size, std::span<const Continuity> continuity = {});
@@ -41,7 +41,8 @@ public:
 
   std::span<const Index> cell_nodes(Index c) const {
     return {cell_nodes_.data() + offsets_[static_cast<std::size_t>(c)],
-            static_cast<std::size_t>(offsets_[static_cast<std::size_t>(c) + 1] - offsets_[static_cast<std::size_t>(c)])};
+            static_cast<std::size_t>(offsets_[static_cast<std::size_t>(c) + 1] -
+                                     offsets_[static_cast<std::size_t>(c)])};
   }
   Index num_cells() const { return static_cast<Index>(offsets_.size()) - 1; }
   Continuity continuity(Index c) const { return continuity_[static_cast<std::size_t>(c)]; }
@@ -55,7 +56,7 @@ public:
   /// Every dof node of the given cells, sorted and unique.
   std::vector<Index> dof_nodes_of_cells(std::span<const Index> cells) const;
 
-private:
+ private:
   int block_size_;
   std::vector<Index> offsets_;
   std::vector<Index> cell_nodes_;

@@ -10,8 +10,8 @@
 namespace perimorph::driver {
 
 struct DirichletData {
-  std::vector<Index> dofs;      ///< sorted, unique
-  std::vector<double> values;   ///< prescribed value at load factor 1
+  std::vector<Index> dofs;     ///< sorted, unique
+  std::vector<double> values;  ///< prescribed value at load factor 1
 };
 
 /// Constrained dofs and their values. A dof named by several entries takes the

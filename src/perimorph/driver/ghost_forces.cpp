@@ -32,10 +32,12 @@ GhostForces compute_ghost_forces(const Model& model, const Mat3& strain) {
 
   // Nodal volumes: the load of a unit body force in each component.
   std::vector<double> lumped(static_cast<std::size_t>(n), 0.0);
-  assembly::assemble_body_force(model.local_space(), [](const Vec3&) { return Vec3::Ones(); }, lumped);
+  assembly::assemble_body_force(
+      model.local_space(), [](const Vec3&) { return Vec3::Ones(); }, lumped);
   // DG degree 0 nodes: the cell volume (the body-force loop assumes Q1 cells).
   g.nodal_volume.assign(static_cast<std::size_t>(dm.num_nodes()), 0.0);
-  for (Index a = 0; a < dm.num_nodes(); ++a) g.nodal_volume[static_cast<std::size_t>(a)] = lumped[static_cast<std::size_t>(a * dim)];
+  for (Index a = 0; a < dm.num_nodes(); ++a)
+    g.nodal_volume[static_cast<std::size_t>(a)] = lumped[static_cast<std::size_t>(a * dim)];
   g.density.resize(g.residual.size());
   for (std::size_t k = 0; k < g.residual.size(); ++k) {
     const double v = g.nodal_volume[k / static_cast<std::size_t>(dim)];
@@ -58,7 +60,11 @@ std::string write_ghost_forces(const Model& model, const GhostForces& g, const s
   io::CsvTable csv(csv_path, cols);
   for (Index a = 0; a < dm.num_nodes(); ++a) {
     const Vec3& x = dm.node_coordinate(a);
-    std::vector<double> row{static_cast<double>(a), x.x(), x.y(), x.z(), g.nodal_volume[static_cast<std::size_t>(a)],
+    std::vector<double> row{static_cast<double>(a),
+                            x.x(),
+                            x.y(),
+                            x.z(),
+                            g.nodal_volume[static_cast<std::size_t>(a)],
                             model.nonlocal ? model.nonlocal->alpha(x) : 0.0};
     for (int d = 0; d < dim; ++d) row.push_back(g.residual[static_cast<std::size_t>(a * dim + d)]);
     for (int d = 0; d < dim; ++d) row.push_back(g.density[static_cast<std::size_t>(a * dim + d)]);

@@ -12,9 +12,9 @@
 namespace perimorph::driver {
 
 struct GhostForces {
-  std::vector<double> residual;       ///< r = K u (dof vector), 0 on constrained dofs
-  std::vector<double> nodal_volume;   ///< ∫ N_a dV per dof node (× thickness/area)
-  std::vector<double> density;        ///< residual / nodal volume (dof vector)
+  std::vector<double> residual;      ///< r = K u (dof vector), 0 on constrained dofs
+  std::vector<double> nodal_volume;  ///< ∫ N_a dV per dof node (× thickness/area)
+  std::vector<double> density;       ///< residual / nodal volume (dof vector)
   double max_density = 0.0;
 };
 

@@ -31,17 +31,19 @@ void add_node_set(mesh::Mesh& m, const casefile::NodeSetSpec& s, double tol) {
   const int dim = m.dim();
   const auto names = m.set_names();
   if (std::find(names.begin(), names.end(), s.name) != names.end())
-    throw InputError(fmt::format("{}: node set '{}': the mesh already has a set of that name; choose another name",
-                                 s.where.describe(), s.name));
+    throw InputError(
+        fmt::format("{}: node set '{}': the mesh already has a set of that name; choose another name",
+                    s.where.describe(), s.name));
   const Vec3 lo = s.lower - Vec3::Constant(tol), hi = s.upper + Vec3::Constant(tol);
   std::vector<Index> nodes;
   for (Index n = 0; n < m.num_nodes(); ++n)
     if (inside(m.node(n), lo, hi, dim)) nodes.push_back(n);
   if (nodes.empty())
-    throw InputError(fmt::format("{}: node set '{}' (box {} to {}) selects no mesh node; enlarge its box to reach "
-                                 "a node (the mesh spans {} to {})",
-                                 s.where.describe(), s.name, point(s.lower, dim), point(s.upper, dim),
-                                 point(m.bounding_box().first, dim), point(m.bounding_box().second, dim)));
+    throw InputError(
+        fmt::format("{}: node set '{}' (box {} to {}) selects no mesh node; enlarge its box to reach "
+                    "a node (the mesh spans {} to {})",
+                    s.where.describe(), s.name, point(s.lower, dim), point(s.upper, dim),
+                    point(m.bounding_box().first, dim), point(m.bounding_box().second, dim)));
   m.node_sets[s.name] = std::move(nodes);
 }
 
@@ -58,8 +60,9 @@ mesh::Mesh build_mesh(const casefile::CaseConfig& config) {
         m.cell_region[static_cast<std::size_t>(c)] = r.id;
       }
     if (cells.empty())
-      throw InputError(fmt::format("{}: region '{}' contains no cell centroid; enlarge its box or refine the mesh",
-                                   r.where.describe(), r.name));
+      throw InputError(
+          fmt::format("{}: region '{}' contains no cell centroid; enlarge its box or refine the mesh",
+                      r.where.describe(), r.name));
     m.cell_sets[r.name] = std::move(cells);
   }
   for (const auto& c : config.mesh.cuts) {
@@ -88,11 +91,13 @@ Voigt6 material_stiffness(const casefile::MaterialSpec& m) {
     problem = fem::admissibility_problem(iso);
     C = fem::stiffness_voigt(iso);
   } else {
-    const fem::OrthotropicElasticity ortho{m.E1, m.E2, m.E3, m.nu12, m.nu13, m.nu23, m.G12, m.G13, m.G23, m.axes};
+    const fem::OrthotropicElasticity ortho{m.E1,   m.E2,  m.E3,  m.nu12, m.nu13,
+                                           m.nu23, m.G12, m.G13, m.G23,  m.axes};
     problem = fem::admissibility_problem(ortho);
     C = fem::stiffness_voigt(ortho);
   }
-  if (!problem.empty()) throw InputError(fmt::format("{}: material '{}': {}", m.where.describe(), m.name, problem));
+  if (!problem.empty())
+    throw InputError(fmt::format("{}: material '{}': {}", m.where.describe(), m.name, problem));
   return C;
 }
 
@@ -116,8 +121,8 @@ Model build_model(const casefile::CaseConfig& config) {
         throw InputError(fmt::format("{}: calibration = \"discrete\" needs a structured box mesh",
                                      config.nonlocal.where.describe()));
       nl->kernel.scale = nl->calibration.scale;
-      nl->discrete_factor =
-          assembly::discrete_calibration_factor(*m.structure, dim, config.nonlocal.quadrature, nl->kernel, C0);
+      nl->discrete_factor = assembly::discrete_calibration_factor(*m.structure, dim,
+                                                                  config.nonlocal.quadrature, nl->kernel, C0);
       nl->calibration.scale *= nl->discrete_factor;
       nl->calibration.gc_factor *= nl->discrete_factor;
     }
@@ -128,23 +133,26 @@ Model build_model(const casefile::CaseConfig& config) {
     nl->graph = bonds::find_cell_neighbors(m, nl->kernel.horizon, [&](Index e, Index f) {
       return amax[static_cast<std::size_t>(e)] > 0.0 || amax[static_cast<std::size_t>(f)] > 0.0;
     });
-    nl->morph = assembly::morph_stiffness(
-        m, rule, nl->points, nl->graph, nl->kernel, nl->alpha, C0,
-        config.nonlocal.coupling == casefile::Coupling::partition ? assembly::CouplingRule::partition
-                                                                   : assembly::CouplingRule::morphing,
-        field);
+    nl->morph = assembly::morph_stiffness(m, rule, nl->points, nl->graph, nl->kernel, nl->alpha, C0,
+                                          config.nonlocal.coupling == casefile::Coupling::partition
+                                              ? assembly::CouplingRule::partition
+                                              : assembly::CouplingRule::morphing,
+                                          field);
     const auto dg = config.nonlocal.discretization;
     if (dg != casefile::Discretization::continuous) {
-      const auto flag = dg == casefile::Discretization::discontinuous ? dofs::Continuity::discontinuous
-                                                                       : dofs::Continuity::discontinuous_constant;
+      const auto flag = dg == casefile::Discretization::discontinuous
+                            ? dofs::Continuity::discontinuous
+                            : dofs::Continuity::discontinuous_constant;
       continuity.assign(static_cast<std::size_t>(m.num_cells()), dofs::Continuity::continuous);
       for (Index c = 0; c < m.num_cells(); ++c)
-        if (nl->morph.purely_nonlocal[static_cast<std::size_t>(c)]) continuity[static_cast<std::size_t>(c)] = flag;
+        if (nl->morph.purely_nonlocal[static_cast<std::size_t>(c)])
+          continuity[static_cast<std::size_t>(c)] = flag;
     }
   } else {
     std::vector<int> assigned(static_cast<std::size_t>(m.num_cells()), -1);
     for (const auto& mat : config.materials) {
-      const int id = field.add_tensor(fem::reduce_stiffness(material_stiffness(mat), dim, config.model.plane));
+      const int id =
+          field.add_tensor(fem::reduce_stiffness(material_stiffness(mat), dim, config.model.plane));
       for (Index c : m.cell_sets.at(mat.region)) {
         field.set_cell(c, id);
         assigned[static_cast<std::size_t>(c)] = id;
@@ -152,13 +160,14 @@ Model build_model(const casefile::CaseConfig& config) {
     }
     for (Index c = 0; c < m.num_cells(); ++c)
       if (assigned[static_cast<std::size_t>(c)] < 0)
-        throw InputError(fmt::format("{}: cell {} (centroid {:.4g}, {:.4g}, {:.4g}) has no material; give a material "
-                                     "with region = \"all\" or cover every region",
-                                     config.path, c, m.cell_centroid(c).x(), m.cell_centroid(c).y(),
-                                     m.cell_centroid(c).z()));
+        throw InputError(fmt::format(
+            "{}: cell {} (centroid {:.4g}, {:.4g}, {:.4g}) has no material; give a material "
+            "with region = \"all\" or cover every region",
+            config.path, c, m.cell_centroid(c).x(), m.cell_centroid(c).y(), m.cell_centroid(c).z()));
   }
   dofs::DofMap dofmap(m, dim, continuity);
-  return Model{config, std::move(m), std::move(dofmap), std::move(rule), std::move(field), scale, std::move(nl)};
+  return Model{config,           std::move(m), std::move(dofmap), std::move(rule),
+               std::move(field), scale,        std::move(nl)};
 }
 
 }  // namespace perimorph::driver

@@ -4,9 +4,9 @@
 // quadrature point. This is where typed case data meets the pipeline stages.
 
 #include "perimorph/assembly/local_assembly.hpp"
-#include "perimorph/driver/nonlocal_setup.hpp"
 #include "perimorph/casefile/case_config.hpp"
 #include "perimorph/dofs/dof_map.hpp"
+#include "perimorph/driver/nonlocal_setup.hpp"
 #include "perimorph/fem/constitutive_field.hpp"
 #include "perimorph/fem/material.hpp"
 #include "perimorph/mesh/mesh.hpp"

@@ -19,11 +19,21 @@ alpha::AlphaField make_alpha_field(const casefile::CaseConfig& config) {
                      : r.profile == casefile::AlphaProfile::linear  ? alpha::Profile::linear
                                                                     : alpha::Profile::cubic;
     switch (r.shape) {
-      case casefile::AlphaShapeKind::interval: region.shape = alpha::Interval{r.lower.x(), r.upper.x()}; break;
-      case casefile::AlphaShapeKind::slab: region.shape = alpha::Slab{r.point, r.direction, r.half_width}; break;
-      case casefile::AlphaShapeKind::ball: region.shape = alpha::Ball{r.point, r.radius}; break;
-      case casefile::AlphaShapeKind::cylinder: region.shape = alpha::Cylinder{r.point, r.direction, r.radius}; break;
-      case casefile::AlphaShapeKind::box: region.shape = alpha::Box{r.lower, r.upper}; break;
+      case casefile::AlphaShapeKind::interval:
+        region.shape = alpha::Interval{r.lower.x(), r.upper.x()};
+        break;
+      case casefile::AlphaShapeKind::slab:
+        region.shape = alpha::Slab{r.point, r.direction, r.half_width};
+        break;
+      case casefile::AlphaShapeKind::ball:
+        region.shape = alpha::Ball{r.point, r.radius};
+        break;
+      case casefile::AlphaShapeKind::cylinder:
+        region.shape = alpha::Cylinder{r.point, r.direction, r.radius};
+        break;
+      case casefile::AlphaShapeKind::box:
+        region.shape = alpha::Box{r.lower, r.upper};
+        break;
     }
     regions.push_back(region);
   }
@@ -33,10 +43,18 @@ alpha::AlphaField make_alpha_field(const casefile::CaseConfig& config) {
 peridynamics::Micromodulus make_kernel(const casefile::NonlocalSpec& spec) {
   peridynamics::Micromodulus k;
   switch (spec.kernel) {
-    case casefile::KernelKind::constant: k.shape = peridynamics::KernelShape::constant; break;
-    case casefile::KernelKind::conical: k.shape = peridynamics::KernelShape::conical; break;
-    case casefile::KernelKind::exponential: k.shape = peridynamics::KernelShape::exponential; break;
-    case casefile::KernelKind::gaussian: k.shape = peridynamics::KernelShape::gaussian; break;
+    case casefile::KernelKind::constant:
+      k.shape = peridynamics::KernelShape::constant;
+      break;
+    case casefile::KernelKind::conical:
+      k.shape = peridynamics::KernelShape::conical;
+      break;
+    case casefile::KernelKind::exponential:
+      k.shape = peridynamics::KernelShape::exponential;
+      break;
+    case casefile::KernelKind::gaussian:
+      k.shape = peridynamics::KernelShape::gaussian;
+      break;
   }
   k.horizon = spec.horizon;
   k.length = spec.length > 0 ? spec.length : spec.horizon;
@@ -45,20 +63,23 @@ peridynamics::Micromodulus make_kernel(const casefile::NonlocalSpec& spec) {
 
 casefile::MaterialSpec calibration_material(const casefile::CaseConfig& config) {
   if (config.materials.size() != 1)
-    throw InputError(fmt::format("{}: a case with [nonlocal] needs exactly one material (the micromodulus is "
-                                 "calibrated from it); this case has {}",
-                                 config.nonlocal.where.describe(), config.materials.size()));
+    throw InputError(
+        fmt::format("{}: a case with [nonlocal] needs exactly one material (the micromodulus is "
+                    "calibrated from it); this case has {}",
+                    config.nonlocal.where.describe(), config.materials.size()));
   casefile::MaterialSpec m = config.materials.front();
   if (m.kind != casefile::MaterialKind::isotropic)
-    throw InputError(fmt::format("{}: material '{}': the non-local model is calibrated from an isotropic material "
-                                 "(anisotropic micromoduli are not available yet)",
-                                 m.where.describe(), m.name));
+    throw InputError(
+        fmt::format("{}: material '{}': the non-local model is calibrated from an isotropic material "
+                    "(anisotropic micromoduli are not available yet)",
+                    m.where.describe(), m.name));
   const int dim = config.dim();
   if (std::isnan(m.nu)) {
     m.nu = dim == 1 ? 0.0 : peridynamics::cauchy_poisson_ratio(dim, config.model.plane);
   } else if (auto problem = peridynamics::cauchy_problem(dim, config.model.plane, m.nu); !problem.empty()) {
-    throw InputError(fmt::format("{}: material '{}': {}", m.nu_where.line > 0 ? m.nu_where.describe() : m.where.describe(),
-                                 m.name, problem));
+    throw InputError(fmt::format("{}: material '{}': {}",
+                                 m.nu_where.line > 0 ? m.nu_where.describe() : m.where.describe(), m.name,
+                                 problem));
   }
   return m;
 }

@@ -50,16 +50,22 @@ RunOutput::RunOutput(const Model& model, std::string directory, std::string base
   const char* axes = "xyz";
   for (const auto& name : reaction_names)
     for (int d = 0; d < dim_; ++d) columns.push_back(fmt::format("reaction_{}_{}", name, axes[d]));
-  for (const char* c : {"strain_energy", "external_work", "solver_iterations", "relative_residual", "wall_time"})
+  for (const char* c :
+       {"strain_energy", "external_work", "solver_iterations", "relative_residual", "wall_time"})
     columns.emplace_back(c);
   csv_ = std::make_unique<io::CsvTable>(csv_path(), std::move(columns));
   if (model.config.output.vtu) pvd_ = std::make_unique<io::PvdCollection>(pvd_path());
 }
 
-std::string RunOutput::csv_path() const { return (std::filesystem::path(directory_) / (basename_ + ".csv")).string(); }
-std::string RunOutput::pvd_path() const { return (std::filesystem::path(directory_) / (basename_ + ".pvd")).string(); }
+std::string RunOutput::csv_path() const {
+  return (std::filesystem::path(directory_) / (basename_ + ".csv")).string();
+}
+std::string RunOutput::pvd_path() const {
+  return (std::filesystem::path(directory_) / (basename_ + ".pvd")).string();
+}
 
-void RunOutput::write_increment_vtu(const Model& model, int increment, double load_factor, std::span<const double> u) {
+void RunOutput::write_increment_vtu(const Model& model, int increment, double load_factor,
+                                    std::span<const double> u) {
   if (!pvd_) return;
   const auto& dm = model.dofmap;
   io::UnstructuredGrid grid;
@@ -86,7 +92,8 @@ void RunOutput::write_increment_vtu(const Model& model, int increment, double lo
   io::Field disp{"displacement", 3, std::vector<double>(grid.points.size() * 3, 0.0)};
   for (std::size_t p = 0; p < grid.points.size(); ++p)
     for (int d = 0; d < dim_; ++d)
-      disp.values[p * 3 + static_cast<std::size_t>(d)] = u[static_cast<std::size_t>(point_dof_node[p] * dim_ + d)];
+      disp.values[p * 3 + static_cast<std::size_t>(d)] =
+          u[static_cast<std::size_t>(point_dof_node[p] * dim_ + d)];
   grid.point_data.push_back(std::move(disp));
   if (model.nonlocal) {
     io::Field alpha{"alpha", 1, {}};
@@ -96,7 +103,8 @@ void RunOutput::write_increment_vtu(const Model& model, int increment, double lo
 
   const auto fields = assembly::cell_strain_stress(model.local_space(), model.stiffness, u);
   const int nv = fem::voigt_size(dim_);
-  io::Field strain{"strain", 9, {}}, stress{"stress", 9, {}}, region{"region", 1, {}}, energy{"strain_energy_density", 1, {}};
+  io::Field strain{"strain", 9, {}}, stress{"stress", 9, {}}, region{"region", 1, {}},
+      energy{"strain_energy_density", 1, {}};
   for (Index c = 0; c < dm.num_cells(); ++c) {
     const auto e = voigt_to_tensor(&fields.strain[static_cast<std::size_t>(c * nv)], dim_, true);
     const auto s = voigt_to_tensor(&fields.stress[static_cast<std::size_t>(c * nv)], dim_, false);
@@ -117,10 +125,10 @@ void RunOutput::write_increment_vtu(const Model& model, int increment, double lo
       for (std::size_t q = 0; q < nq; ++q) a += nl.morph.alpha[static_cast<std::size_t>(c) * nq + q];
       alpha_cell.values.push_back(a / static_cast<double>(nq));
       const auto k = dm.continuity(c);
-      kind.values.push_back(k == dofs::Continuity::discontinuous            ? 2.0
-                            : k == dofs::Continuity::discontinuous_constant ? 3.0
+      kind.values.push_back(k == dofs::Continuity::discontinuous                    ? 2.0
+                            : k == dofs::Continuity::discontinuous_constant         ? 3.0
                             : nl.morph.purely_nonlocal[static_cast<std::size_t>(c)] ? 1.0
-                                                                                     : 0.0);
+                                                                                    : 0.0);
     }
     grid.cell_data.push_back(std::move(alpha_cell));
     grid.cell_data.push_back(std::move(kind));
@@ -135,8 +143,8 @@ void RunOutput::add_row(const IncrementRecord& r) {
   std::vector<double> row{static_cast<double>(r.increment), r.load_factor};
   for (const Vec3& f : r.reactions)
     for (int d = 0; d < dim_; ++d) row.push_back(f[d]);
-  row.insert(row.end(), {r.strain_energy, r.external_work, static_cast<double>(r.iterations), r.relative_residual,
-                         r.wall_time});
+  row.insert(row.end(), {r.strain_energy, r.external_work, static_cast<double>(r.iterations),
+                         r.relative_residual, r.wall_time});
   csv_->add_row(row);
 }
 

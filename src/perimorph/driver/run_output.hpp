@@ -25,10 +25,11 @@ struct IncrementRecord {
 };
 
 class RunOutput {
-public:
+ public:
   /// Creates `directory` (and parents). Files: BASENAME.csv, BASENAME.pvd,
   /// BASENAME_NNNN.vtu.
-  RunOutput(const Model& model, std::string directory, std::string basename, std::vector<std::string> reaction_names);
+  RunOutput(const Model& model, std::string directory, std::string basename,
+            std::vector<std::string> reaction_names);
 
   void write_increment_vtu(const Model& model, int increment, double load_factor, std::span<const double> u);
   void add_row(const IncrementRecord& r);
@@ -37,7 +38,7 @@ public:
   std::string csv_path() const;
   std::string pvd_path() const;
 
-private:
+ private:
   std::string directory_, basename_;
   int dim_;
   std::unique_ptr<io::CsvTable> csv_;

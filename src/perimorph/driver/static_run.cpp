@@ -95,9 +95,11 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
       summary.last_solve = solver.solve(rhs, u);
     } catch (const SolverError& e) {
       progress.finish();
-      const std::string kept = i == 0 ? fmt::format("No increment completed (output directory {})", summary.output_directory)
-                                      : fmt::format("Results of increments 1..{} are in {}", i, summary.output_directory);
-      throw SolverError(fmt::format("increment {}/{} (load factor {}): {}\n{}", i + 1, total, lambda, e.what(), kept));
+      const std::string kept =
+          i == 0 ? fmt::format("No increment completed (output directory {})", summary.output_directory)
+                 : fmt::format("Results of increments 1..{} are in {}", i, summary.output_directory);
+      throw SolverError(
+          fmt::format("increment {}/{} (load factor {}): {}\n{}", i + 1, total, lambda, e.what(), kept));
     }
     // Internal force K u: reactions on constrained dofs, energies.
     K.mult(u, internal);

@@ -20,7 +20,8 @@ AssembledStiffness assemble_stiffness(const Model& model) {
   if (model.nonlocal) {
     t0 = clock::now();
     const auto& nl = *model.nonlocal;
-    out.nonlocal = assembly::assemble_nonlocal({model.mesh, model.dofmap, nl.points, nl.graph, nl.kernel}, out.K);
+    out.nonlocal =
+        assembly::assemble_nonlocal({model.mesh, model.dofmap, nl.points, nl.graph, nl.kernel}, out.K);
     out.nonlocal_seconds = seconds(t0);
   }
   out.K.finalize();

@@ -6,8 +6,11 @@
 namespace perimorph::fem {
 
 ConstitutiveField::ConstitutiveField(int dim, Index num_cells, int points_per_cell)
-    : dim_(dim), nv_(voigt_size(dim)), npts_(points_per_cell),
-      first_(static_cast<std::size_t>(num_cells), -1), per_point_(static_cast<std::size_t>(num_cells), 0) {}
+    : dim_(dim),
+      nv_(voigt_size(dim)),
+      npts_(points_per_cell),
+      first_(static_cast<std::size_t>(num_cells), -1),
+      per_point_(static_cast<std::size_t>(num_cells), 0) {}
 
 int ConstitutiveField::add_tensor(const Eigen::MatrixXd& C) {
   PERIMORPH_ASSERT(C.rows() == nv_ && C.cols() == nv_, "tensor size does not match the model dimension");

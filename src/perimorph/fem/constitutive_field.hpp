@@ -14,7 +14,7 @@
 namespace perimorph::fem {
 
 class ConstitutiveField {
-public:
+ public:
   ConstitutiveField(int dim, Index num_cells, int points_per_cell);
 
   int dim() const { return dim_; }
@@ -37,7 +37,7 @@ public:
   }
   Eigen::Map<const Eigen::MatrixXd> matrix(Index c, int q) const { return {at(c, q), nv_, nv_}; }
 
-private:
+ private:
   int dim_, nv_, npts_;
   std::vector<double> data_;
   std::vector<Index> first_;

@@ -11,9 +11,11 @@
 namespace perimorph::fem {
 
 template <int D>
-inline constexpr int voigt_dim = D == 1 ? 1 : D == 2 ? 3 : 6;
+inline constexpr int voigt_dim = D == 1   ? 1
+                                 : D == 2 ? 3
+                                          : 6;
 template <int D>
-inline constexpr int element_dofs = D * q1_nodes<D>;
+inline constexpr int element_dofs = D* q1_nodes<D>;
 
 template <int D>
 using ElementMatrix = Eigen::Matrix<double, element_dofs<D>, element_dofs<D>>;
@@ -72,8 +74,8 @@ void elasticity_stiffness(const NodeCoords<D>& X, std::span<const QuadraturePoin
 
 /// f_e = Σ_q N_a b(x_q) w_q |J_q| · scale for a body force density b(x).
 template <int D, class BodyForce>
-void body_force_load(const NodeCoords<D>& X, std::span<const QuadraturePoint> rule, BodyForce&& b, double scale,
-                     ElementVector<D>& f) {
+void body_force_load(const NodeCoords<D>& X, std::span<const QuadraturePoint> rule, BodyForce&& b,
+                     double scale, ElementVector<D>& f) {
   f.setZero();
   ShapeGradients<D> g;
   for (const QuadraturePoint& q : rule) {
@@ -100,23 +102,27 @@ double face_measure(const Eigen::Matrix<double, 3, q1_nodes<D - 1>>& Y, const Ve
   } else {
     const ShapeGradients<D - 1> G = q1_reference_gradients<D - 1>(s);
     const Eigen::Matrix<double, 3, D - 1> T = Y * G.transpose();
-    if constexpr (D == 2) return T.col(0).norm();
-    else return T.col(0).cross(T.col(1)).norm();
+    if constexpr (D == 2)
+      return T.col(0).norm();
+    else
+      return T.col(0).cross(T.col(1)).norm();
   }
 }
 
 /// Consistent nodal loads on a face for a constant traction t (force per
 /// area): f_a = ∫ N_a t dS · scale, a over the face's nodes.
 template <int D>
-Eigen::Matrix<double, D * q1_nodes<D - 1>, 1> face_traction_load(const Eigen::Matrix<double, 3, q1_nodes<D - 1>>& Y,
-                                                                  std::span<const QuadraturePoint> face_rule,
-                                                                  const Vec3& t, double scale) {
+Eigen::Matrix<double, D * q1_nodes<D - 1>, 1> face_traction_load(
+    const Eigen::Matrix<double, 3, q1_nodes<D - 1>>& Y, std::span<const QuadraturePoint> face_rule,
+    const Vec3& t, double scale) {
   Eigen::Matrix<double, D * q1_nodes<D - 1>, 1> f = decltype(f)::Zero();
   for (const QuadraturePoint& q : face_rule) {
     const double dS = face_measure<D>(Y, q.xi);
     Eigen::Matrix<double, q1_nodes<D - 1>, 1> N;
-    if constexpr (D == 1) N[0] = 1.0;
-    else N = q1_values<D - 1>(q.xi);
+    if constexpr (D == 1)
+      N[0] = 1.0;
+    else
+      N = q1_values<D - 1>(q.xi);
     for (int a = 0; a < q1_nodes<D - 1>; ++a)
       for (int d = 0; d < D; ++d) f[a * D + d] += N[a] * t[d] * q.weight * dS * scale;
   }

@@ -73,12 +73,14 @@ Eigen::MatrixXd reduce_stiffness(const Voigt6& C, int dim, PlaneMode mode) {
   Eigen::MatrixXd out(3, 3);
   if (mode == PlaneMode::strain) {
     for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) out(a, b) = C(idx[static_cast<std::size_t>(a)], idx[static_cast<std::size_t>(b)]);
+      for (int b = 0; b < 3; ++b)
+        out(a, b) = C(idx[static_cast<std::size_t>(a)], idx[static_cast<std::size_t>(b)]);
     return out;
   }
   const Voigt6 S = C.inverse();
   for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) out(a, b) = S(idx[static_cast<std::size_t>(a)], idx[static_cast<std::size_t>(b)]);
+    for (int b = 0; b < 3; ++b)
+      out(a, b) = S(idx[static_cast<std::size_t>(a)], idx[static_cast<std::size_t>(b)]);
   return out.inverse();
 }
 
@@ -90,16 +92,18 @@ std::string admissibility_problem(const IsotropicElasticity& m) {
 }
 
 std::string admissibility_problem(const OrthotropicElasticity& m) {
-  for (auto [name, v] : {std::pair{"E1", m.E1}, {"E2", m.E2}, {"E3", m.E3}, {"G12", m.G12}, {"G13", m.G13}, {"G23", m.G23}})
+  for (auto [name, v] :
+       {std::pair{"E1", m.E1}, {"E2", m.E2}, {"E3", m.E3}, {"G12", m.G12}, {"G13", m.G13}, {"G23", m.G23}})
     if (!(v > 0)) return fmt::format("{} = {} must be positive", name, v);
   Eigen::Matrix3d S;
   S << 1 / m.E1, -m.nu12 / m.E1, -m.nu13 / m.E1, -m.nu12 / m.E1, 1 / m.E2, -m.nu23 / m.E2, -m.nu13 / m.E1,
       -m.nu23 / m.E2, 1 / m.E3;
   const double min_eig = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(S).eigenvalues().minCoeff();
   if (!(min_eig > 0))
-    return fmt::format("the Poisson ratios nu12 = {}, nu13 = {}, nu23 = {} make the compliance indefinite "
-                       "(smallest eigenvalue {:.3g}); need 1 - nu12*nu21 - nu23*nu32 - nu13*nu31 - 2*nu21*nu32*nu13 > 0",
-                       m.nu12, m.nu13, m.nu23, min_eig);
+    return fmt::format(
+        "the Poisson ratios nu12 = {}, nu13 = {}, nu23 = {} make the compliance indefinite "
+        "(smallest eigenvalue {:.3g}); need 1 - nu12*nu21 - nu23*nu32 - nu13*nu31 - 2*nu21*nu32*nu13 > 0",
+        m.nu12, m.nu13, m.nu23, min_eig);
   if ((m.axes.transpose() * m.axes - Mat3::Identity()).norm() > 1e-10 || m.axes.determinant() < 0)
     return "the material axes are not a proper rotation (orthonormal, right-handed)";
   return {};

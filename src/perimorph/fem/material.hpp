@@ -40,7 +40,9 @@ Voigt6 rotate_stiffness(const Voigt6& C, const Mat3& axes);
 Eigen::MatrixXd reduce_stiffness(const Voigt6& C, int dim, PlaneMode mode);
 
 /// Size of the Voigt vector in dimension dim: 1, 3 or 6.
-constexpr int voigt_size(int dim) { return dim == 1 ? 1 : dim == 2 ? 3 : 6; }
+constexpr int voigt_size(int dim) {
+  return dim == 1 ? 1 : dim == 2 ? 3 : 6;
+}
 
 /// Checks that the material is physically admissible (positive moduli,
 /// positive-definite stiffness). Returns an empty string if so, otherwise a

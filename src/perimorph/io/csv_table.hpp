@@ -10,7 +10,7 @@
 namespace perimorph::io {
 
 class CsvTable {
-public:
+ public:
   /// Creates (or truncates) `path` and writes the header line once: the
   /// column names separated by ','; a name containing ',', '"' or a line
   /// break is quoted RFC 4180 style. Throws std::logic_error if `columns` is
@@ -27,7 +27,7 @@ public:
   const std::vector<std::string>& columns() const { return columns_; }
   std::size_t rows() const { return rows_; }
 
-private:
+ private:
   std::string path_;
   std::vector<std::string> columns_;
   std::ofstream file_;

@@ -27,10 +27,14 @@ enum class VtkCell : std::uint8_t { line = 3, quad = 9, hexahedron = 12, vertex 
 /// Nodes of one cell of type t.
 constexpr int vtk_nodes_per_cell(VtkCell t) {
   switch (t) {
-    case VtkCell::vertex: return 1;
-    case VtkCell::line: return 2;
-    case VtkCell::quad: return 4;
-    case VtkCell::hexahedron: return 8;
+    case VtkCell::vertex:
+      return 1;
+    case VtkCell::line:
+      return 2;
+    case VtkCell::quad:
+      return 4;
+    case VtkCell::hexahedron:
+      return 8;
   }
   return 0;
 }

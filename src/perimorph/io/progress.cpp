@@ -2,14 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <cstdio>
-#include <unistd.h>
 
 namespace perimorph::io {
 
 ProgressLine::ProgressLine(int total, bool enabled)
-    : total_(total), active_(enabled && ::isatty(STDERR_FILENO) == 1),
+    : total_(total),
+      active_(enabled && ::isatty(STDERR_FILENO) == 1),
       start_(std::chrono::steady_clock::now()) {}
 
 ProgressLine::~ProgressLine() {

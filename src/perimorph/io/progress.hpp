@@ -10,7 +10,7 @@
 namespace perimorph::io {
 
 class ProgressLine {
-public:
+ public:
   /// total: number of increments of the run (>= 0). The clock starts here.
   ProgressLine(int total, bool enabled);
   /// Calls finish().
@@ -34,7 +34,7 @@ public:
   /// ETA is "-" while done <= 0.
   static std::string format(int done, int total, const std::string& detail, double elapsed_s);
 
-private:
+ private:
   int total_;
   bool active_;
   bool drawn_ = false;

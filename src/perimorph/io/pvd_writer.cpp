@@ -22,12 +22,23 @@ std::string xml_escape(std::string_view s) {
   std::string r;
   for (char c : s) {
     switch (c) {
-      case '&': r += "&amp;"; break;
-      case '<': r += "&lt;"; break;
-      case '>': r += "&gt;"; break;
-      case '"': r += "&quot;"; break;
-      case '\'': r += "&apos;"; break;
-      default: r.push_back(c);
+      case '&':
+        r += "&amp;";
+        break;
+      case '<':
+        r += "&lt;";
+        break;
+      case '>':
+        r += "&gt;";
+        break;
+      case '"':
+        r += "&quot;";
+        break;
+      case '\'':
+        r += "&apos;";
+        break;
+      default:
+        r.push_back(c);
     }
   }
   return r;
@@ -35,7 +46,9 @@ std::string xml_escape(std::string_view s) {
 
 }  // namespace
 
-PvdCollection::PvdCollection(std::string path) : path_(std::move(path)) { rewrite(); }
+PvdCollection::PvdCollection(std::string path) : path_(std::move(path)) {
+  rewrite();
+}
 
 void PvdCollection::add(double time, const std::string& vtu_relative_path) {
   if (!std::isfinite(time))
@@ -60,8 +73,7 @@ void PvdCollection::rewrite() const {
   const std::string tmp_path = path_ + ".tmp";
   {
     std::ofstream file(tmp_path, std::ios::binary | std::ios::trunc);
-    if (!file)
-      throw Error(fmt::format("cannot open '{}' for writing: {}", tmp_path, std::strerror(errno)));
+    if (!file) throw Error(fmt::format("cannot open '{}' for writing: {}", tmp_path, std::strerror(errno)));
     file.write(out.data(), static_cast<std::streamsize>(out.size()));
     file.close();
     if (!file) throw Error(fmt::format("error while writing '{}'", tmp_path));

@@ -8,7 +8,7 @@
 namespace perimorph::io {
 
 class PvdCollection {
-public:
+ public:
   /// Creates (or truncates) `path` and writes an empty, valid collection.
   /// Throws perimorph::Error if the file cannot be written.
   explicit PvdCollection(std::string path);
@@ -25,7 +25,7 @@ public:
   const std::string& path() const { return path_; }
   std::size_t size() const { return entries_.size(); }
 
-private:
+ private:
   struct Entry {
     double time;
     std::string file;

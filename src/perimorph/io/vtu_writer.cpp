@@ -21,18 +21,16 @@
 namespace perimorph::io {
 
 // The binary arrays are memcpy'd from host memory and declared LittleEndian.
-static_assert(std::endian::native == std::endian::little,
-              "write_vtu assumes a little-endian host");
+static_assert(std::endian::native == std::endian::little, "write_vtu assumes a little-endian host");
 
 namespace {
 
-constexpr std::string_view kAlphabet =
-    "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+constexpr std::string_view kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
 
 /// Incremental base64 encoder appending to a string; bytes may arrive in any
 /// number of put() calls, finish() pads the last group.
 class Base64Encoder {
-public:
+ public:
   explicit Base64Encoder(std::string& out) : out_(out) {}
 
   void put(const void* data, std::size_t size) {
@@ -49,7 +47,7 @@ public:
     emit(pending_);
   }
 
-private:
+ private:
   void emit(std::size_t n) {
     const unsigned v = (unsigned{group_[0]} << 16) | (unsigned{group_[1]} << 8) | unsigned{group_[2]};
     out_.push_back(kAlphabet[(v >> 18) & 63u]);
@@ -68,12 +66,23 @@ std::string xml_escape(std::string_view s) {
   std::string r;
   for (char c : s) {
     switch (c) {
-      case '&': r += "&amp;"; break;
-      case '<': r += "&lt;"; break;
-      case '>': r += "&gt;"; break;
-      case '"': r += "&quot;"; break;
-      case '\'': r += "&apos;"; break;
-      default: r.push_back(c);
+      case '&':
+        r += "&amp;";
+        break;
+      case '<':
+        r += "&lt;";
+        break;
+      case '>':
+        r += "&gt;";
+        break;
+      case '"':
+        r += "&quot;";
+        break;
+      case '\'':
+        r += "&apos;";
+        break;
+      default:
+        r.push_back(c);
     }
   }
   return r;
@@ -81,8 +90,10 @@ std::string xml_escape(std::string_view s) {
 
 template <class T>
 constexpr std::string_view vtk_type_name() {
-  if constexpr (std::is_same_v<T, double>) return "Float64";
-  else if constexpr (std::is_same_v<T, std::int64_t>) return "Int64";
+  if constexpr (std::is_same_v<T, double>)
+    return "Float64";
+  else if constexpr (std::is_same_v<T, std::int64_t>)
+    return "Int64";
   else {
     static_assert(std::is_same_v<T, std::uint8_t>);
     return "UInt8";
@@ -95,8 +106,8 @@ template <class T>
 void append_data_array(std::string& out, int indent, std::string_view name, int components,
                        std::span<const T> values, VtuEncoding encoding) {
   const std::string pad(static_cast<std::size_t>(indent), ' ');
-  fmt::format_to(std::back_inserter(out), "{}<DataArray type=\"{}\" Name=\"{}\"", pad,
-                 vtk_type_name<T>(), xml_escape(name));
+  fmt::format_to(std::back_inserter(out), "{}<DataArray type=\"{}\" Name=\"{}\"", pad, vtk_type_name<T>(),
+                 xml_escape(name));
   if (components > 0) fmt::format_to(std::back_inserter(out), " NumberOfComponents=\"{}\"", components);
   if (encoding == VtuEncoding::base64) {
     out += " format=\"binary\">\n";
@@ -139,10 +150,14 @@ std::span<const int> vtk_node_order(VtkCell t) {
   static constexpr std::array<int, 4> quad{0, 1, 3, 2};
   static constexpr std::array<int, 8> hex{0, 1, 3, 2, 4, 5, 7, 6};
   switch (t) {
-    case VtkCell::vertex: return vertex;
-    case VtkCell::line: return line;
-    case VtkCell::quad: return quad;
-    case VtkCell::hexahedron: return hex;
+    case VtkCell::vertex:
+      return vertex;
+    case VtkCell::line:
+      return line;
+    case VtkCell::quad:
+      return quad;
+    case VtkCell::hexahedron:
+      return hex;
   }
   throw std::logic_error(fmt::format("write_vtu: unknown VtkCell value {}", static_cast<int>(t)));
 }
@@ -158,8 +173,8 @@ void validate_fields(const std::vector<Field>& fields, std::size_t count, std::s
           fmt::format("write_vtu: {} field '{}' has {} components (need >= 1)", kind, f.name, f.components));
     const std::size_t expected = count * static_cast<std::size_t>(f.components);
     if (f.values.size() != expected)
-      throw std::logic_error(fmt::format("write_vtu: {} field '{}' has {} values, expected {} ({} x {})", kind,
-                                         f.name, f.values.size(), expected, count, f.components));
+      throw std::logic_error(fmt::format("write_vtu: {} field '{}' has {} values, expected {} ({} x {})",
+                                         kind, f.name, f.values.size(), expected, count, f.components));
   }
 }
 
@@ -171,13 +186,14 @@ std::size_t validate(const UnstructuredGrid& g) {
                                        g.nodes_per_cell, static_cast<int>(g.cell_type), npc));
   const auto unpc = static_cast<std::size_t>(npc);
   if (g.connectivity.size() % unpc != 0)
-    throw std::logic_error(fmt::format("write_vtu: connectivity size {} is not a multiple of {}",
-                                       g.connectivity.size(), npc));
+    throw std::logic_error(
+        fmt::format("write_vtu: connectivity size {} is not a multiple of {}", g.connectivity.size(), npc));
   const std::size_t num_points = g.points.size();
   for (std::size_t i = 0; i < g.connectivity.size(); ++i) {
     const Index n = g.connectivity[i];
     if (n < 0 || static_cast<std::size_t>(n) >= num_points)
-      throw std::logic_error(fmt::format("write_vtu: connectivity[{}] = {} outside [0, {})", i, n, num_points));
+      throw std::logic_error(
+          fmt::format("write_vtu: connectivity[{}] = {} outside [0, {})", i, n, num_points));
   }
   const std::size_t num_cells = g.connectivity.size() / unpc;
   validate_fields(g.point_data, num_points, "point");
@@ -188,8 +204,7 @@ std::size_t validate(const UnstructuredGrid& g) {
 void append_fields(std::string& out, std::string_view tag, const std::vector<Field>& fields,
                    VtuEncoding encoding) {
   fmt::format_to(std::back_inserter(out), "      <{}>\n", tag);
-  for (const Field& f : fields)
-    append_data_array<double>(out, 8, f.name, f.components, f.values, encoding);
+  for (const Field& f : fields) append_data_array<double>(out, 8, f.name, f.components, f.values, encoding);
   fmt::format_to(std::back_inserter(out), "      </{}>\n", tag);
 }
 
@@ -213,8 +228,7 @@ void write_vtu(const std::string& path, const UnstructuredGrid& grid, VtuEncodin
   // peak extra memory is about one array's encoded size.
   const std::string tmp_path = path + ".tmp";
   std::ofstream file(tmp_path, std::ios::binary | std::ios::trunc);
-  if (!file)
-    throw Error(fmt::format("cannot open '{}' for writing: {}", tmp_path, std::strerror(errno)));
+  if (!file) throw Error(fmt::format("cannot open '{}' for writing: {}", tmp_path, std::strerror(errno)));
 
   std::string out;
   auto flush = [&] {
@@ -223,8 +237,9 @@ void write_vtu(const std::string& path, const UnstructuredGrid& grid, VtuEncodin
   };
 
   out += "<?xml version=\"1.0\"?>\n";
-  out += "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-         "header_type=\"UInt64\">\n";
+  out +=
+      "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt64\">\n";
   out += "  <UnstructuredGrid>\n";
   fmt::format_to(std::back_inserter(out), "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
                  num_points, num_cells);

@@ -35,7 +35,8 @@ void LinearSolver::set_operator(Matrix& A, std::span<const Vec3> node_coordinate
   PetscScalar* c = nullptr;
   PM_PETSC(VecGetArray(coords, &c));
   for (std::size_t n = 0; n < node_coordinates.size(); ++n)
-    for (int d = 0; d < dim; ++d) c[n * static_cast<std::size_t>(dim) + static_cast<std::size_t>(d)] = node_coordinates[n][d];
+    for (int d = 0; d < dim; ++d)
+      c[n * static_cast<std::size_t>(dim) + static_cast<std::size_t>(d)] = node_coordinates[n][d];
   PM_PETSC(VecRestoreArray(coords, &c));
   MatNullSpace nullsp = nullptr;
   PM_PETSC(MatNullSpaceCreateRigidBody(coords, &nullsp));
@@ -77,9 +78,10 @@ SolveReport LinearSolver::solve(const Vector& b, Vector& x) {
         "or check the boundary conditions: an unconstrained rigid-body motion makes the matrix singular",
         report.ksp_type, report.pc_type, report.reason, report.iterations, report.relative_residual));
   if (!x.all_finite() || !std::isfinite(report.relative_residual))
-    throw SolverError(fmt::format("the solution contains NaN or Inf ({} + {}, {} iterations); the matrix is "
-                                  "probably singular or the material data invalid",
-                                  report.ksp_type, report.pc_type, report.iterations));
+    throw SolverError(
+        fmt::format("the solution contains NaN or Inf ({} + {}, {} iterations); the matrix is "
+                    "probably singular or the material data invalid",
+                    report.ksp_type, report.pc_type, report.iterations));
   return report;
 }
 

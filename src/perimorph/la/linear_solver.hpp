@@ -21,7 +21,7 @@ struct SolveReport {
 };
 
 class LinearSolver {
-public:
+ public:
   LinearSolver(double rtol, int max_iterations);
   ~LinearSolver();
   LinearSolver(const LinearSolver&) = delete;
@@ -34,7 +34,7 @@ public:
   /// non-finite solution, naming PETSc's reason and the options to try.
   SolveReport solve(const Vector& b, Vector& x);
 
-private:
+ private:
   PetscKspHandle ksp_ = nullptr;
   const Matrix* A_ = nullptr;
 };

@@ -17,7 +17,8 @@ Matrix::Matrix(const assembly::SparsityPattern& pattern) {
   PM_PETSC(MatSetBlockSize(m_, bs));
   // Block-row counts; serial: every column is in the diagonal block.
   std::vector<PetscInt> dnnz(static_cast<std::size_t>(nb)), onnz(static_cast<std::size_t>(nb), 0);
-  for (Index r = 0; r < nb; ++r) dnnz[static_cast<std::size_t>(r)] = static_cast<PetscInt>(pattern.row(r).size());
+  for (Index r = 0; r < nb; ++r)
+    dnnz[static_cast<std::size_t>(r)] = static_cast<PetscInt>(pattern.row(r).size());
   PM_PETSC(MatXAIJSetPreallocation(m_, bs, dnnz.data(), onnz.data(), nullptr, nullptr));
   PM_PETSC(MatSetOption(m_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   PM_PETSC(MatSetOption(m_, MAT_IGNORE_ZERO_ENTRIES, PETSC_FALSE));
@@ -33,7 +34,8 @@ Matrix::Matrix(const assembly::SparsityPattern& pattern) {
     zeros.assign(cols.size(), 0.0);
     for (Index k = 0; k < bs; ++k) {
       const PetscInt grow = r * bs + k;
-      PM_PETSC(MatSetValues(m_, 1, &grow, static_cast<PetscInt>(cols.size()), cols.data(), zeros.data(), INSERT_VALUES));
+      PM_PETSC(MatSetValues(m_, 1, &grow, static_cast<PetscInt>(cols.size()), cols.data(), zeros.data(),
+                            INSERT_VALUES));
     }
   }
   finalize();
@@ -43,7 +45,9 @@ Matrix::~Matrix() {
   if (m_) MatDestroy(&m_);
 }
 
-Matrix::Matrix(Matrix&& other) noexcept : m_(other.m_) { other.m_ = nullptr; }
+Matrix::Matrix(Matrix&& other) noexcept : m_(other.m_) {
+  other.m_ = nullptr;
+}
 
 Matrix& Matrix::operator=(Matrix&& other) noexcept {
   if (this != &other) {
@@ -55,11 +59,13 @@ Matrix& Matrix::operator=(Matrix&& other) noexcept {
 }
 
 void Matrix::add(std::span<const Index> rows, std::span<const Index> cols, std::span<const double> values) {
-  PM_PETSC(MatSetValues(m_, static_cast<PetscInt>(rows.size()), rows.data(), static_cast<PetscInt>(cols.size()),
-                        cols.data(), values.data(), ADD_VALUES));
+  PM_PETSC(MatSetValues(m_, static_cast<PetscInt>(rows.size()), rows.data(),
+                        static_cast<PetscInt>(cols.size()), cols.data(), values.data(), ADD_VALUES));
 }
 
-void Matrix::zero_entries() { PM_PETSC(MatZeroEntries(m_)); }
+void Matrix::zero_entries() {
+  PM_PETSC(MatZeroEntries(m_));
+}
 
 void Matrix::finalize() {
   PM_PETSC(MatAssemblyBegin(m_, MAT_FINAL_ASSEMBLY));
@@ -72,10 +78,13 @@ Matrix Matrix::duplicate() const {
   return Matrix(copy);
 }
 
-void Matrix::mult(const Vector& x, Vector& y) const { PM_PETSC(MatMult(m_, x.handle(), y.handle())); }
+void Matrix::mult(const Vector& x, Vector& y) const {
+  PM_PETSC(MatMult(m_, x.handle(), y.handle()));
+}
 
 void Matrix::eliminate_dirichlet(std::span<const Index> rows, const Vector& x, Vector& rhs, double diagonal) {
-  PM_PETSC(MatZeroRowsColumns(m_, static_cast<PetscInt>(rows.size()), rows.data(), diagonal, x.handle(), rhs.handle()));
+  PM_PETSC(MatZeroRowsColumns(m_, static_cast<PetscInt>(rows.size()), rows.data(), diagonal, x.handle(),
+                              rhs.handle()));
 }
 
 Index Matrix::rows() const {

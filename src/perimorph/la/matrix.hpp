@@ -15,7 +15,7 @@
 namespace perimorph::la {
 
 class Matrix final : public assembly::MatrixInserter {
-public:
+ public:
   explicit Matrix(const assembly::SparsityPattern& pattern);
   ~Matrix() override;
   Matrix(Matrix&& other) noexcept;
@@ -49,7 +49,7 @@ public:
 
   PetscMatHandle handle() const { return m_; }
 
-private:
+ private:
   explicit Matrix(PetscMatHandle m) : m_(m) {}
   PetscMatHandle m_ = nullptr;
 };

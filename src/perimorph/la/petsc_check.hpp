@@ -13,7 +13,8 @@ inline void check(PetscErrorCode ierr, const char* call) {
   if (ierr == 0) return;
   const char* text = nullptr;
   PetscErrorMessage(ierr, &text, nullptr);
-  throw SolverError(fmt::format("PETSc call {} failed: {} (code {})", call, text ? text : "?", static_cast<int>(ierr)));
+  throw SolverError(
+      fmt::format("PETSc call {} failed: {} (code {})", call, text ? text : "?", static_cast<int>(ierr)));
 }
 
 }  // namespace perimorph::la::detail

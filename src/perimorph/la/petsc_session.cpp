@@ -20,20 +20,26 @@ PetscSession::PetscSession(int& argc, char**& argv) {
   PM_PETSC(PetscInitialize(&argc, &argv, nullptr, nullptr));
 }
 
-PetscSession::PetscSession() { PM_PETSC(PetscInitializeNoArguments()); }
+PetscSession::PetscSession() {
+  PM_PETSC(PetscInitializeNoArguments());
+}
 
-PetscSession::~PetscSession() { PetscFinalize(); }
+PetscSession::~PetscSession() {
+  PetscFinalize();
+}
 
 void add_options(const std::string& options) {
   // Insert option by option, skipping those already given (command line wins).
   std::istringstream in(options);
-  std::vector<std::string> words{std::istream_iterator<std::string>(in), std::istream_iterator<std::string>()};
+  std::vector<std::string> words{std::istream_iterator<std::string>(in),
+                                 std::istream_iterator<std::string>()};
   for (std::size_t i = 0; i < words.size(); ++i) {
     const std::string& name = words[i];
     if (name.size() < 2 || name[0] != '-')
       throw InputError(fmt::format("PETSc options must start with '-': got '{}' in \"{}\"", name, options));
     std::string value;
-    if (i + 1 < words.size() && !(words[i + 1][0] == '-' && words[i + 1].size() > 1 && std::isalpha(static_cast<unsigned char>(words[i + 1][1]))))
+    if (i + 1 < words.size() && !(words[i + 1][0] == '-' && words[i + 1].size() > 1 &&
+                                  std::isalpha(static_cast<unsigned char>(words[i + 1][1]))))
       value = words[++i];
     PetscBool set = PETSC_FALSE;
     PM_PETSC(PetscOptionsHasName(nullptr, nullptr, name.c_str(), &set));

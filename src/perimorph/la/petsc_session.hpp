@@ -9,7 +9,7 @@
 namespace perimorph::la {
 
 class PetscSession {
-public:
+ public:
   PetscSession(int& argc, char**& argv);
   PetscSession();
   ~PetscSession();

@@ -21,7 +21,9 @@ Vector::~Vector() {
   if (v_) VecDestroy(&v_);
 }
 
-Vector::Vector(Vector&& other) noexcept : v_(other.v_) { other.v_ = nullptr; }
+Vector::Vector(Vector&& other) noexcept : v_(other.v_) {
+  other.v_ = nullptr;
+}
 
 Vector& Vector::operator=(Vector&& other) noexcept {
   if (this != &other) {
@@ -38,7 +40,9 @@ Index Vector::size() const {
   return n;
 }
 
-void Vector::set_all(double value) { PM_PETSC(VecSet(v_, value)); }
+void Vector::set_all(double value) {
+  PM_PETSC(VecSet(v_, value));
+}
 
 void Vector::assign(std::span<const double> values) {
   PERIMORPH_ASSERT(static_cast<Index>(values.size()) == size(), "vector size mismatch");
@@ -76,9 +80,13 @@ double Vector::dot(const Vector& other) const {
   return d;
 }
 
-void Vector::axpy(double a, const Vector& x) { PM_PETSC(VecAXPY(v_, a, x.v_)); }
+void Vector::axpy(double a, const Vector& x) {
+  PM_PETSC(VecAXPY(v_, a, x.v_));
+}
 
-void Vector::copy_from(const Vector& other) { PM_PETSC(VecCopy(other.v_, v_)); }
+void Vector::copy_from(const Vector& other) {
+  PM_PETSC(VecCopy(other.v_, v_));
+}
 
 bool Vector::all_finite() const {
   const PetscScalar* a = nullptr;

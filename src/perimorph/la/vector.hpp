@@ -11,7 +11,7 @@
 namespace perimorph::la {
 
 class Vector {
-public:
+ public:
   Vector(Index size, int block_size);
   ~Vector();
   Vector(Vector&& other) noexcept;
@@ -35,7 +35,7 @@ public:
 
   PetscVecHandle handle() const { return v_; }
 
-private:
+ private:
   PetscVecHandle v_ = nullptr;
 };
 

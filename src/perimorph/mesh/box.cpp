@@ -9,8 +9,8 @@ namespace perimorph::mesh {
 Mesh make_box(const BoxSpec& spec) {
   const int dim = spec.dim;
   PERIMORPH_ASSERT(dim >= 1 && dim <= 3, "box dimension");
-  std::array<Index, 3> n{1, 1, 1};    // cells per direction
-  std::array<Index, 3> nn{1, 1, 1};   // nodes per direction
+  std::array<Index, 3> n{1, 1, 1};   // cells per direction
+  std::array<Index, 3> nn{1, 1, 1};  // nodes per direction
   for (int d = 0; d < dim; ++d) {
     n[static_cast<std::size_t>(d)] = spec.cells[static_cast<std::size_t>(d)];
     PERIMORPH_ASSERT(n[static_cast<std::size_t>(d)] >= 1, "box needs at least one cell per direction");
@@ -40,7 +40,8 @@ Mesh make_box(const BoxSpec& spec) {
   for (Index k = 0; k < n[2]; ++k)
     for (Index j = 0; j < n[1]; ++j)
       for (Index i = 0; i < n[0]; ++i)
-        for (int a = 0; a < npc; ++a) cells.push_back(node_id(i + (a & 1), j + ((a >> 1) & 1), k + ((a >> 2) & 1)));
+        for (int a = 0; a < npc; ++a)
+          cells.push_back(node_id(i + (a & 1), j + ((a >> 1) & 1), k + ((a >> 2) & 1)));
 
   Mesh mesh(dim, std::move(nodes), std::move(cells));
 
@@ -80,7 +81,8 @@ Mesh make_box(const BoxSpec& spec) {
   StructuredLayout layout;
   layout.cells = n;
   layout.origin = spec.lower;
-  for (int d = 0; d < dim; ++d) layout.spacing[d] = (spec.upper[d] - spec.lower[d]) / static_cast<double>(n[static_cast<std::size_t>(d)]);
+  for (int d = 0; d < dim; ++d)
+    layout.spacing[d] = (spec.upper[d] - spec.lower[d]) / static_cast<double>(n[static_cast<std::size_t>(d)]);
   mesh.structure = layout;
   return mesh;
 }

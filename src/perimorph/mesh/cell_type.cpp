@@ -11,9 +11,12 @@ constexpr std::array<std::array<int, 4>, 6> hex_faces{
 
 std::span<const int> face_nodes(CellType t, int f) {
   switch (t) {
-    case CellType::bar2: return bar_faces.at(static_cast<std::size_t>(f));
-    case CellType::quad4: return quad_faces.at(static_cast<std::size_t>(f));
-    case CellType::hex8: return hex_faces.at(static_cast<std::size_t>(f));
+    case CellType::bar2:
+      return bar_faces.at(static_cast<std::size_t>(f));
+    case CellType::quad4:
+      return quad_faces.at(static_cast<std::size_t>(f));
+    case CellType::hex8:
+      return hex_faces.at(static_cast<std::size_t>(f));
   }
   return {};
 }

@@ -11,10 +11,18 @@ namespace perimorph::mesh {
 
 enum class CellType { bar2, quad4, hex8 };
 
-constexpr int cell_dim(CellType t) { return t == CellType::bar2 ? 1 : t == CellType::quad4 ? 2 : 3; }
-constexpr int nodes_per_cell(CellType t) { return 1 << cell_dim(t); }
-constexpr int faces_per_cell(CellType t) { return 2 * cell_dim(t); }
-constexpr int nodes_per_face(CellType t) { return nodes_per_cell(t) / 2; }
+constexpr int cell_dim(CellType t) {
+  return t == CellType::bar2 ? 1 : t == CellType::quad4 ? 2 : 3;
+}
+constexpr int nodes_per_cell(CellType t) {
+  return 1 << cell_dim(t);
+}
+constexpr int faces_per_cell(CellType t) {
+  return 2 * cell_dim(t);
+}
+constexpr int nodes_per_face(CellType t) {
+  return nodes_per_cell(t) / 2;
+}
 constexpr CellType cell_type_of_dim(int dim) {
   return dim == 1 ? CellType::bar2 : dim == 2 ? CellType::quad4 : CellType::hex8;
 }
@@ -24,6 +32,8 @@ constexpr CellType cell_type_of_dim(int dim) {
 std::span<const int> face_nodes(CellType t, int f);
 
 /// Reference coordinate (±1) of local node a along axis d.
-constexpr double reference_node_coordinate(int a, int d) { return ((a >> d) & 1) ? 1.0 : -1.0; }
+constexpr double reference_node_coordinate(int a, int d) {
+  return ((a >> d) & 1) ? 1.0 : -1.0;
+}
 
 }  // namespace perimorph::mesh

@@ -58,8 +58,9 @@ CutReport split_along_cut(Mesh& mesh, const Cut& cut) {
       cut_faces.insert(key);
   }
   if (cut_faces.empty())
-    throw InputError("the pre-crack cut does not lie on any interior element face: a cut must follow "
-                     "element faces (place it on a grid line/plane of the mesh)");
+    throw InputError(
+        "the pre-crack cut does not lie on any interior element face: a cut must follow "
+        "element faces (place it on a grid line/plane of the mesh)");
 
   std::set<Index> cut_nodes;
   for (const FaceKey& key : cut_faces) cut_nodes.insert(key.begin(), key.end());
@@ -104,7 +105,8 @@ CutReport split_along_cut(Mesh& mesh, const Cut& cut) {
   for (auto& [name, set] : mesh.node_sets) {
     std::vector<Index> added;
     for (Index n : set)
-      if (auto it = copies.find(n); it != copies.end()) added.insert(added.end(), it->second.begin(), it->second.end());
+      if (auto it = copies.find(n); it != copies.end())
+        added.insert(added.end(), it->second.begin(), it->second.end());
     set.insert(set.end(), added.begin(), added.end());
     std::sort(set.begin(), set.end());
   }

@@ -7,8 +7,8 @@
 namespace perimorph::mesh {
 
 struct CutReport {
-  Index faces_cut = 0;      ///< interior faces lying on the cut
-  Index nodes_split = 0;    ///< new nodes created
+  Index faces_cut = 0;    ///< interior faces lying on the cut
+  Index nodes_split = 0;  ///< new nodes created
 };
 
 /// Splits `mesh` along `cut`. An interior face is cut when all its nodes lie on

@@ -2,9 +2,9 @@
 
 #include "perimorph/core/error.hpp"
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <Eigen/Dense>
 
 #include <algorithm>
 #include <set>
@@ -32,7 +32,10 @@ double Mesh::cell_size(Index c) const {
   // Edges of a tensor-product cell join local nodes that differ in one bit.
   for (int a = 0; a < nodes_per_cell(); ++a)
     for (int d = 0; d < dim_; ++d)
-      if (!((a >> d) & 1)) h = std::max(h, (node(nodes[static_cast<std::size_t>(a | (1 << d))]) - node(nodes[static_cast<std::size_t>(a)])).norm());
+      if (!((a >> d) & 1))
+        h = std::max(h, (node(nodes[static_cast<std::size_t>(a | (1 << d))]) -
+                         node(nodes[static_cast<std::size_t>(a)]))
+                            .norm());
   return h;
 }
 

@@ -47,18 +47,22 @@ struct StructuredLayout {
   std::array<Index, 3> cells{1, 1, 1};
   Vec3 origin = Vec3::Zero();
   Vec3 spacing = Vec3::Ones();
-  std::array<Index, 3> cell_ijk(Index c) const { return {c % cells[0], (c / cells[0]) % cells[1], c / (cells[0] * cells[1])}; }
+  std::array<Index, 3> cell_ijk(Index c) const {
+    return {c % cells[0], (c / cells[0]) % cells[1], c / (cells[0] * cells[1])};
+  }
 };
 
 class Mesh {
-public:
+ public:
   Mesh(int dim, std::vector<Vec3> nodes, std::vector<Index> cells);
 
   int dim() const { return dim_; }
   CellType cell_type() const { return cell_type_of_dim(dim_); }
   int nodes_per_cell() const { return mesh::nodes_per_cell(cell_type()); }
   Index num_nodes() const { return static_cast<Index>(nodes_.size()); }
-  Index num_cells() const { return static_cast<Index>(cells_.size() / static_cast<std::size_t>(nodes_per_cell())); }
+  Index num_cells() const {
+    return static_cast<Index>(cells_.size() / static_cast<std::size_t>(nodes_per_cell()));
+  }
 
   const Vec3& node(Index n) const { return nodes_[static_cast<std::size_t>(n)]; }
   const std::vector<Vec3>& nodes() const { return nodes_; }
@@ -92,10 +96,11 @@ public:
   // Mutation used by the pre-crack splitter.
   Index add_node(const Vec3& x);
   void set_cell_node(Index c, int local, Index node) {
-    cells_[static_cast<std::size_t>(c) * static_cast<std::size_t>(nodes_per_cell()) + static_cast<std::size_t>(local)] = node;
+    cells_[static_cast<std::size_t>(c) * static_cast<std::size_t>(nodes_per_cell()) +
+           static_cast<std::size_t>(local)] = node;
   }
 
-private:
+ private:
   int dim_;
   std::vector<Vec3> nodes_;
   std::vector<Index> cells_;

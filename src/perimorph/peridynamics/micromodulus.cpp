@@ -13,10 +13,14 @@ namespace perimorph::peridynamics {
 
 const char* to_string(KernelShape s) {
   switch (s) {
-    case KernelShape::constant: return "constant";
-    case KernelShape::conical: return "conical";
-    case KernelShape::exponential: return "exponential";
-    case KernelShape::gaussian: return "gaussian";
+    case KernelShape::constant:
+      return "constant";
+    case KernelShape::conical:
+      return "conical";
+    case KernelShape::exponential:
+      return "exponential";
+    case KernelShape::gaussian:
+      return "gaussian";
   }
   return "?";
 }
@@ -24,10 +28,14 @@ const char* to_string(KernelShape s) {
 double Micromodulus::shape_value(double r) const {
   if (r >= horizon) return 0.0;
   switch (shape) {
-    case KernelShape::constant: return 1.0;
-    case KernelShape::conical: return 1.0 - r / horizon;
-    case KernelShape::exponential: return r * r * std::exp(-r / length);
-    case KernelShape::gaussian: return r * r * std::exp(-r * r / (length * length));
+    case KernelShape::constant:
+      return 1.0;
+    case KernelShape::conical:
+      return 1.0 - r / horizon;
+    case KernelShape::exponential:
+      return r * r * std::exp(-r / length);
+    case KernelShape::gaussian:
+      return r * r * std::exp(-r * r / (length * length));
   }
   return 0.0;
 }
@@ -57,10 +65,14 @@ std::string cauchy_problem(int dim, PlaneMode mode, double nu) {
   if (dim == 1) return {};
   const double expected = cauchy_poisson_ratio(dim, mode);
   if (std::abs(nu - expected) <= 1e-9) return {};
-  const char* setting = dim == 3 ? "in 3D" : mode == PlaneMode::strain ? "in plane strain" : "in plane stress";
+  const char* setting = dim == 3                    ? "in 3D"
+                        : mode == PlaneMode::strain ? "in plane strain"
+                                                    : "in plane stress";
   return fmt::format(
-      "nu = {} cannot be represented by a bond-based (central-force) peridynamic material: its pair forces impose "
-      "the Cauchy relation lambda = mu, hence nu = {} {} (THEORY §2). Use nu = {}, or leave nu out to have it set",
+      "nu = {} cannot be represented by a bond-based (central-force) peridynamic material: its pair forces "
+      "impose "
+      "the Cauchy relation lambda = mu, hence nu = {} {} (THEORY §2). Use nu = {}, or leave nu out to have "
+      "it set",
       nu, dim == 2 && mode == PlaneMode::stress ? "1/3" : "1/4", setting,
       dim == 2 && mode == PlaneMode::stress ? "0.3333333333333333" : "0.25");
 }

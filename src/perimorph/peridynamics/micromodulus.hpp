@@ -29,7 +29,6 @@ struct Micromodulus {
   double moment(int k) const { return scale * shape_moment(k); }
 };
 
-
 /// What calibration gives (THEORY §2 table and §5): the scale ĉ, the Lamé
 /// constant λ = μ of the equivalent local material, its E and ν, and the
 /// factor κ with G_c = κ · s_crit².

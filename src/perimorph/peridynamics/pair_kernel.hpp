@@ -37,7 +37,9 @@ inline constexpr int max_cell_nodes = 8;
 /// (|ξ| < δ) and a bond within a relative 1e-10 of δ counts as exactly δ and
 /// is left out: on grids with δ/h rational, many point pairs lie exactly δ
 /// apart, and round-off in their coordinates must not decide bond by bond.
-inline double horizon_cutoff_squared(double delta) { return delta * delta * (1.0 - 1e-10); }
+inline double horizon_cutoff_squared(double delta) {
+  return delta * delta * (1.0 - 1e-10);
+}
 
 /// True if the bond x_g–x_h crosses one of the cuts (a pre-crack removes it).
 inline bool bond_cut(const Vec3& a, const Vec3& b, std::span<const mesh::Cut> cuts) {
@@ -108,7 +110,8 @@ std::size_t pair_stiffness(const CellPoints& E, const CellPoints& F, bool same_c
     for (int a = 0; a < nE; ++a)
       for (int b = 0; b < nF; ++b)
         for (int i = 0; i < D; ++i)
-          for (int j = 0; j < D; ++j) at(a, i, offF + b, j) -= Ng[a] * U[static_cast<std::size_t>(b * D * D + i * D + j)];
+          for (int j = 0; j < D; ++j)
+            at(a, i, offF + b, j) -= Ng[a] * U[static_cast<std::size_t>(b * D * D + i * D + j)];
   }
   if (same_cell) {
     // Ordered pairs (g, h), h ≠ g, with the full k: for E = F the unordered sum
