@@ -15,12 +15,14 @@
 namespace perimorph::assembly {
 
 /// D̄ (Voigt, model dimension) averaged over the points of one cell of the
-/// infinite lattice of `layout`'s cells with n Gauss points per direction.
+/// infinite lattice of `layout`'s cells with n Gauss points per direction,
+/// with the plain cut-off or the partial-volume bond rule.
 Eigen::MatrixXd lattice_bulk_tensor(const mesh::StructuredLayout& layout, int dim, int n,
-                                    const peridynamics::Micromodulus& kernel);
+                                    const peridynamics::Micromodulus& kernel, bool partial_volume = false);
 
 /// The least-squares factor that maps D̄ onto C₀.
 double discrete_calibration_factor(const mesh::StructuredLayout& layout, int dim, int n,
-                                   const peridynamics::Micromodulus& kernel, const Eigen::MatrixXd& C0);
+                                   const peridynamics::Micromodulus& kernel, const Eigen::MatrixXd& C0,
+                                   bool partial_volume = false);
 
 }  // namespace perimorph::assembly

@@ -2,6 +2,7 @@
 
 #include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/bonds/nonlocal_points.hpp"
+#include "perimorph/core/error.hpp"
 #include "perimorph/fem/constitutive_field.hpp"
 #include "perimorph/fem/material.hpp"
 #include "perimorph/fem/shape.hpp"
@@ -32,16 +33,32 @@ Vec3 physical_point(const mesh::Mesh& mesh, Index c, const Vec3& xi) {
   return x;
 }
 
+Vec3 box_half_widths(const mesh::Mesh& mesh, Index c, const Vec3& xi, const Vec3& line_weights) {
+  auto box = [&]<int D>() {
+    fem::NodeCoords<D> X;
+    const auto nodes = mesh.cell(c);
+    for (int a = 0; a < fem::q1_nodes<D>; ++a)
+      X.col(a) = mesh.node(nodes[static_cast<std::size_t>(a)]).template head<D>();
+    return fem::q1_point_box_half_widths<D>(X, xi, line_weights);
+  };
+  if (mesh.dim() == 1) return box.template operator()<1>();
+  if (mesh.dim() == 2) return box.template operator()<2>();
+  return box.template operator()<3>();
+}
+
 }  // namespace
 
 Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const Index> cells,
                                  const bonds::NonlocalPoints& points,
-                                 const peridynamics::Micromodulus& kernel, const mesh::Mesh& mesh) {
+                                 const peridynamics::Micromodulus& kernel, const mesh::Mesh& mesh,
+                                 const Vec3& half_g) {
   const int dim = points.dim;
   const auto pairs = voigt_pairs(dim);
   const int nv = static_cast<int>(pairs.size());
   Eigen::MatrixXd I = Eigen::MatrixXd::Zero(nv, nv);
-  const double delta2 = peridynamics::horizon_cutoff_squared(kernel.horizon);
+  const bool partial = points.partial_volume();
+  const double outer = points.bond_reach(kernel.horizon);
+  const double delta2 = partial ? outer * outer : peridynamics::horizon_cutoff_squared(kernel.horizon);
   for (Index f : cells)
     for (int h = 0; h < points.per_cell; ++h) {
       const std::size_t k = points.index(f, h);
@@ -51,7 +68,17 @@ Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const
       const double r2 = xi.squaredNorm();
       if (r2 >= delta2 || r2 == 0.0) continue;
       if (!mesh.cuts.empty() && peridynamics::bond_cut(xg, points.x[k], mesh.cuts)) continue;
-      const double s = points.weight[k] * kernel(std::sqrt(r2)) * 0.5 * da / (2.0 * r2);
+      double cb = 0.0;
+      if (!partial)
+        cb = kernel(std::sqrt(r2));
+      else if (dim == 1)
+        cb = peridynamics::bond_micromodulus<1>(kernel, xi, r2, &half_g, &points.half[k]);
+      else if (dim == 2)
+        cb = peridynamics::bond_micromodulus<2>(kernel, xi, r2, &half_g, &points.half[k]);
+      else
+        cb = peridynamics::bond_micromodulus<3>(kernel, xi, r2, &half_g, &points.half[k]);
+      if (cb == 0.0) continue;
+      const double s = points.weight[k] * cb * 0.5 * da / (2.0 * r2);
       for (int a = 0; a < nv; ++a)
         for (int b = a; b < nv; ++b) {
           const auto [i, j] = pairs[static_cast<std::size_t>(a)];
@@ -79,6 +106,17 @@ MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::Qu
   out.alpha.resize(static_cast<std::size_t>(ncells) * static_cast<std::size_t>(nq));
   out.purely_nonlocal.assign(static_cast<std::size_t>(ncells), 0);
   std::vector<std::vector<Eigen::MatrixXd>> per_point(static_cast<std::size_t>(ncells));
+  // Partial volumes: the local points' own boxes (the local rule is a tensor
+  // Gauss–Legendre rule), so that where the local and non-local rules coincide
+  // the horizon integral uses exactly the bond weights of the stiffness.
+  std::vector<Vec3> line_weights;
+  if (points.partial_volume()) {
+    int n = 1;
+    while (fem::gauss_legendre(mesh.dim(), n).size() < rule.size()) ++n;
+    line_weights = fem::gauss_legendre_line_weights(mesh.dim(), n);
+    PERIMORPH_ASSERT(line_weights.size() == rule.size(),
+                     "the local rule is not a tensor Gauss-Legendre rule");
+  }
 
 #pragma omp parallel for schedule(dynamic, 16)
   for (Index c = 0; c < ncells; ++c) {
@@ -96,7 +134,11 @@ MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::Qu
       out.alpha[static_cast<std::size_t>(c) * static_cast<std::size_t>(nq) + static_cast<std::size_t>(q)] = a;
       Eigen::MatrixXd Cq = (1.0 - a) * C0;
       if (rule_kind == CouplingRule::morphing && !(amin == a && amax == a))
-        Cq += horizon_integral(x, a, graph.row(c), points, kernel, mesh);
+        Cq += horizon_integral(x, a, graph.row(c), points, kernel, mesh,
+                               line_weights.empty()
+                                   ? Vec3::Zero()
+                                   : box_half_widths(mesh, c, rule[static_cast<std::size_t>(q)].xi,
+                                                     line_weights[static_cast<std::size_t>(q)]));
       all_zero = all_zero && (Cq.array() == 0.0).all();
       uniform = uniform && a == 0.0 && (Cq.array() == C0.array()).all();
       C[static_cast<std::size_t>(q)] = std::move(Cq);

@@ -43,10 +43,13 @@ struct MorphedStiffness {
 
 /// The horizon integral ∫ c(ξ) (α_g − α(p))/2 ξ⊗ξ⊗ξ⊗ξ/(2|ξ|²) dp at x_g
 /// (Voigt, model dimension), summed over the non-local points of the given
-/// cells, bonds crossing a cut excluded. Exposed for tests.
+/// cells, bonds crossing a cut excluded, with the same bond rule as the
+/// non-local stiffness (with points.partial_volume(), `half_g` is the box of
+/// x_g). Exposed for tests.
 Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const Index> cells,
                                  const bonds::NonlocalPoints& points,
-                                 const peridynamics::Micromodulus& kernel, const mesh::Mesh& mesh);
+                                 const peridynamics::Micromodulus& kernel, const mesh::Mesh& mesh,
+                                 const Vec3& half_g = Vec3::Zero());
 
 /// Fills `field` (sized for `rule`) with C(x) for every cell, from the
 /// reference stiffness C0 (Voigt, model dimension). `graph` must hold, for each

@@ -87,13 +87,15 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
   const auto& pts = s.points;
   PERIMORPH_ASSERT(pts.per_cell <= max_points, "at most 6 non-local quadrature points per direction");
   const Index ncells = s.mesh.num_cells();
-  const std::vector<char> near_cut = cells_near_cuts(s.mesh, s.kernel.horizon);
+  const std::vector<char> near_cut = cells_near_cuts(s.mesh, pts.bond_reach(s.kernel.horizon));
   const std::vector<double> ones(static_cast<std::size_t>(pts.per_cell), 1.0);
   auto cell_shape = [&](Index c) {
     peridynamics::CellPoints p;
     p.count = pts.per_cell;
     p.nodes = static_cast<int>(s.dofmap.cell_nodes(c).size());
     p.shape = p.nodes == 1 ? ones.data() : pts.shape.data();
+    p.half = pts.partial_volume() ? pts.half.data() + pts.index(c, 0) : nullptr;
+    p.half_bound = pts.half_bound;
     return p;
   };
   auto cell_points = [&](Index c) {

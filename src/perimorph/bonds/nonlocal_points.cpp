@@ -11,8 +11,9 @@ namespace perimorph::bonds {
 namespace {
 
 template <int D>
-void fill(const mesh::Mesh& mesh, const std::vector<fem::QuadraturePoint>& rule, double scale,
-          const alpha::AlphaField& alpha, NonlocalPoints& p) {
+void fill(const mesh::Mesh& mesh, const std::vector<fem::QuadraturePoint>& rule,
+          const std::vector<Vec3>& line_weights, double scale, const alpha::AlphaField& alpha,
+          NonlocalPoints& p) {
   constexpr int nn = fem::q1_nodes<D>;
   p.shape.resize(rule.size() * nn);
   for (std::size_t q = 0; q < rule.size(); ++q) {
@@ -26,6 +27,8 @@ void fill(const mesh::Mesh& mesh, const std::vector<fem::QuadraturePoint>& rule,
   p.alpha.resize(total);
   p.cell_alpha_max.assign(static_cast<std::size_t>(ncells), 0.0);
   p.cell_alpha_min.assign(static_cast<std::size_t>(ncells), 1.0);
+  const bool boxes = !line_weights.empty();
+  if (boxes) p.half.resize(total);
 #pragma omp parallel for schedule(static)
   for (Index c = 0; c < ncells; ++c) {
     fem::NodeCoords<D> X;
@@ -41,31 +44,35 @@ void fill(const mesh::Mesh& mesh, const std::vector<fem::QuadraturePoint>& rule,
       p.x[k] = x;
       p.weight[k] = rule[q].weight * detJ * scale;
       p.alpha[k] = alpha(x);
+      if (boxes) p.half[k] = fem::q1_point_box_half_widths<D>(X, rule[q].xi, line_weights[q]);
       amax = std::max(amax, p.alpha[k]);
       amin = std::min(amin, p.alpha[k]);
     }
     p.cell_alpha_max[static_cast<std::size_t>(c)] = amax;
     p.cell_alpha_min[static_cast<std::size_t>(c)] = amin;
   }
+  for (const Vec3& b : p.half) p.half_bound = std::max(p.half_bound, b.cwiseAbs().sum());
 }
 
 }  // namespace
 
 NonlocalPoints make_nonlocal_points(const mesh::Mesh& mesh, int n_per_direction, double scale,
-                                    const alpha::AlphaField& alpha) {
+                                    const alpha::AlphaField& alpha, bool partial_volume) {
   NonlocalPoints p;
   p.dim = mesh.dim();
   const auto rule = fem::gauss_legendre(p.dim, n_per_direction);
   p.per_cell = static_cast<int>(rule.size());
+  const std::vector<Vec3> line_weights =
+      partial_volume ? fem::gauss_legendre_line_weights(p.dim, n_per_direction) : std::vector<Vec3>{};
   switch (p.dim) {
     case 1:
-      fill<1>(mesh, rule, scale, alpha, p);
+      fill<1>(mesh, rule, line_weights, scale, alpha, p);
       break;
     case 2:
-      fill<2>(mesh, rule, scale, alpha, p);
+      fill<2>(mesh, rule, line_weights, scale, alpha, p);
       break;
     default:
-      fill<3>(mesh, rule, scale, alpha, p);
+      fill<3>(mesh, rule, line_weights, scale, alpha, p);
       break;
   }
   return p;

@@ -25,6 +25,15 @@ struct NonlocalPoints {
   /// row q = point q (identical for every cell).
   std::vector<double> shape;
   std::vector<double> cell_alpha_max, cell_alpha_min;
+  /// Partial-volume option (peridynamics/horizon_edge.hpp): each point's box
+  /// half-widths; empty for the plain cut-off (a bond counts iff |ξ| < δ).
+  std::vector<Vec3> half;
+  /// max over points of Σ_i half_i: bonds reach at most δ + 2·half_bound.
+  double half_bound = 0.0;
+
+  bool partial_volume() const { return !half.empty(); }
+  /// Largest point separation that can carry a bond.
+  double bond_reach(double horizon) const { return horizon + 2.0 * half_bound; }
 
   Index num_cells() const { return static_cast<Index>(cell_alpha_max.size()); }
   std::size_t index(Index c, int q) const {
@@ -34,7 +43,8 @@ struct NonlocalPoints {
 
 /// Points of an n-per-direction Gauss–Legendre rule in every cell, with α
 /// evaluated at each; `scale` multiplies every weight (thickness or area).
+/// `partial_volume` also stores each point's box (NonlocalPoints::half).
 NonlocalPoints make_nonlocal_points(const mesh::Mesh& mesh, int n_per_direction, double scale,
-                                    const alpha::AlphaField& alpha);
+                                    const alpha::AlphaField& alpha, bool partial_volume = false);
 
 }  // namespace perimorph::bonds

@@ -140,6 +140,10 @@ enum class KernelKind { constant, conical, exponential, gaussian };
 enum class Discretization { continuous, discontinuous, discontinuous_constant };
 enum class Coupling { morphing, partition };
 enum class CalibrationRule { continuum, discrete };
+/// How bonds at the horizon's edge are weighed: a bond counts iff |ξ| < δ
+/// (cutoff), or by the fraction of its points' boxes inside the horizon
+/// (partial_volume, peridynamics/horizon_edge.hpp).
+enum class HorizonEdge { cutoff, partial_volume };
 
 /// [nonlocal]: the bond-based peridynamic model (THEORY §1, §2, §4). Its
 /// micromodulus is calibrated from the local isotropic material. Parsed by
@@ -159,6 +163,7 @@ struct NonlocalSpec {
   /// scaled so that the bulk tensor summed with the actual non-local
   /// quadrature on the (structured) grid matches C₀ in the least-squares sense.
   CalibrationRule calibration = CalibrationRule::continuum;
+  HorizonEdge horizon_edge = HorizonEdge::cutoff;
   SourceLocation where;
 };
 

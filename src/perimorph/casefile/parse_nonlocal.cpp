@@ -35,6 +35,8 @@ const Options<Discretization> kDiscretizations{
 const Options<Coupling> kCouplings{{"morphing", Coupling::morphing}, {"partition", Coupling::partition}};
 const Options<CalibrationRule> kCalibrations{{"continuum", CalibrationRule::continuum},
                                              {"discrete", CalibrationRule::discrete}};
+const Options<HorizonEdge> kHorizonEdges{{"cutoff", HorizonEdge::cutoff},
+                                         {"partial-volume", HorizonEdge::partial_volume}};
 const Options<AlphaShapeKind> kShapes{{"interval", AlphaShapeKind::interval},
                                       {"slab", AlphaShapeKind::slab},
                                       {"ball", AlphaShapeKind::ball},
@@ -240,7 +242,8 @@ AlphaRegionSpec read_alpha_region(const Table& t, int dim) {
 void read_nonlocal(const Table& root, CaseConfig& c) {
   const auto t = root.table("nonlocal");
   if (!t) return;
-  t->check_keys({"kernel", "horizon", "length", "quadrature", "discretization", "coupling", "calibration"});
+  t->check_keys({"kernel", "horizon", "length", "quadrature", "discretization", "coupling", "calibration",
+                 "horizon_edge"});
   NonlocalSpec& n = c.nonlocal;
   n.enabled = true;
   n.where = t->where();
@@ -263,6 +266,7 @@ void read_nonlocal(const Table& root, CaseConfig& c) {
   if (auto v = t->get("discretization")) n.discretization = choose(*v, kDiscretizations, "discretization");
   if (auto v = t->get("coupling")) n.coupling = choose(*v, kCouplings, "coupling");
   if (auto v = t->get("calibration")) n.calibration = choose(*v, kCalibrations, "calibration");
+  if (auto v = t->get("horizon_edge")) n.horizon_edge = choose(*v, kHorizonEdges, "horizon_edge");
 }
 
 // ------------------------------------------------------------ [alpha]

@@ -116,23 +116,25 @@ Model build_model(const casefile::CaseConfig& config) {
     nl->kernel = make_kernel(config.nonlocal);
     nl->calibration = peridynamics::calibrate_isotropic(nl->kernel, dim, config.model.plane, mat.E);
     const Eigen::MatrixXd C0 = fem::reduce_stiffness(material_stiffness(mat), dim, config.model.plane);
+    const bool partial_volume = config.nonlocal.horizon_edge == casefile::HorizonEdge::partial_volume;
     if (config.nonlocal.calibration == casefile::CalibrationRule::discrete) {
       if (!m.structure)
         throw InputError(fmt::format("{}: calibration = \"discrete\" needs a structured box mesh",
                                      config.nonlocal.where.describe()));
       nl->kernel.scale = nl->calibration.scale;
-      nl->discrete_factor = assembly::discrete_calibration_factor(*m.structure, dim,
-                                                                  config.nonlocal.quadrature, nl->kernel, C0);
+      nl->discrete_factor = assembly::discrete_calibration_factor(
+          *m.structure, dim, config.nonlocal.quadrature, nl->kernel, C0, partial_volume);
       nl->calibration.scale *= nl->discrete_factor;
       nl->calibration.gc_factor *= nl->discrete_factor;
     }
     nl->kernel.scale = nl->calibration.scale / scale;  // bond weights W = t² w w carry t twice
     nl->alpha = make_alpha_field(config);
-    nl->points = bonds::make_nonlocal_points(m, config.nonlocal.quadrature, scale, nl->alpha);
+    nl->points = bonds::make_nonlocal_points(m, config.nonlocal.quadrature, scale, nl->alpha, partial_volume);
     const auto& amax = nl->points.cell_alpha_max;
-    nl->graph = bonds::find_cell_neighbors(m, nl->kernel.horizon, [&](Index e, Index f) {
-      return amax[static_cast<std::size_t>(e)] > 0.0 || amax[static_cast<std::size_t>(f)] > 0.0;
-    });
+    nl->graph =
+        bonds::find_cell_neighbors(m, nl->points.bond_reach(nl->kernel.horizon), [&](Index e, Index f) {
+          return amax[static_cast<std::size_t>(e)] > 0.0 || amax[static_cast<std::size_t>(f)] > 0.0;
+        });
     nl->morph = assembly::morph_stiffness(m, rule, nl->points, nl->graph, nl->kernel, nl->alpha, C0,
                                           config.nonlocal.coupling == casefile::Coupling::partition
                                               ? assembly::CouplingRule::partition

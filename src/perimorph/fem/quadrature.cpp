@@ -70,4 +70,21 @@ std::vector<QuadraturePoint> gauss_legendre(int dim, int n) {
   return rule;
 }
 
+std::vector<Vec3> gauss_legendre_line_weights(int dim, int n) {
+  const auto line = gauss_legendre_1d(n);
+  std::vector<Vec3> out;
+  const int nz = dim > 2 ? n : 1;
+  const int ny = dim > 1 ? n : 1;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < n; ++i) {
+        Vec3 w = Vec3::Zero();
+        w.x() = line[static_cast<std::size_t>(i)].weight;
+        if (dim > 1) w.y() = line[static_cast<std::size_t>(j)].weight;
+        if (dim > 2) w.z() = line[static_cast<std::size_t>(k)].weight;
+        out.push_back(w);
+      }
+  return out;
+}
+
 }  // namespace perimorph::fem

@@ -21,4 +21,9 @@ std::vector<QuadraturePoint> gauss_legendre_1d(int n);
 /// Tensor-product rule with n points per direction on [-1, 1]^dim, x fastest.
 std::vector<QuadraturePoint> gauss_legendre(int dim, int n);
 
+/// For each point of gauss_legendre(dim, n) (same order), the 1D weights of
+/// its coordinates per direction (unused components 0); their product is the
+/// point's weight.
+std::vector<Vec3> gauss_legendre_line_weights(int dim, int n);
+
 }  // namespace perimorph::fem

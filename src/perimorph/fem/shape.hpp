@@ -6,6 +6,8 @@
 
 #include <Eigen/Dense>
 
+#include <cmath>
+
 namespace perimorph::fem {
 
 template <int D>
@@ -56,6 +58,19 @@ double q1_physical_gradients(const NodeCoords<D>& X, const Vec3& xi, ShapeGradie
   const Eigen::Matrix<double, D, D> J = X * G.transpose();  // J_ij = ∂x_i/∂ξ_j
   grad = J.transpose().inverse() * G;
   return J.determinant();
+}
+
+/// Half-widths of the box a quadrature point stands for (the partial-volume
+/// option of the bond quadrature, peridynamics/horizon_edge.hpp): the point's
+/// share of the cell, b_i = ½ Σ_d |∂x_i/∂ξ_d| w_d with w_d its 1D Gauss weights
+/// (on an axis-aligned box cell the boxes of a tensor rule tile the cell).
+template <int D>
+Vec3 q1_point_box_half_widths(const NodeCoords<D>& X, const Vec3& xi, const Vec3& line_weights) {
+  const Eigen::Matrix<double, D, D> J = X * q1_reference_gradients<D>(xi).transpose();
+  Vec3 b = Vec3::Zero();
+  for (int i = 0; i < D; ++i)
+    for (int d = 0; d < D; ++d) b[i] += 0.5 * std::abs(J(i, d)) * line_weights[d];
+  return b;
 }
 
 }  // namespace perimorph::fem

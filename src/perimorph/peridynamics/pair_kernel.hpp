@@ -13,6 +13,7 @@
 
 #include "perimorph/core/types.hpp"
 #include "perimorph/mesh/mesh.hpp"
+#include "perimorph/peridynamics/horizon_edge.hpp"
 #include "perimorph/peridynamics/micromodulus.hpp"
 
 #include <array>
@@ -29,6 +30,10 @@ struct CellPoints {
   int count = 0;
   const double* shape = nullptr;  ///< count × nodes, row q = point q
   int nodes = 0;                  ///< 8, 4, 2 (Q1) or 1 (DG degree 0)
+  /// Partial-volume option: the points' box half-widths (null: plain cut-off)
+  /// and a bound on Σ_i half_i over the points.
+  const Vec3* half = nullptr;
+  double half_bound = 0.0;
 };
 
 inline constexpr int max_cell_nodes = 8;
@@ -39,6 +44,21 @@ inline constexpr int max_cell_nodes = 8;
 /// apart, and round-off in their coordinates must not decide bond by bond.
 inline double horizon_cutoff_squared(double delta) {
   return delta * delta * (1.0 - 1e-10);
+}
+
+/// The micromodulus a bond ξ (|ξ|² = r2 > 0) acts with, 0 if there is no
+/// bond: c(|ξ|) inside the open horizon with the plain cut-off (half_g null),
+/// φ c(r_eff) (r_eff/|ξ|)² with the partial-volume rule (horizon_edge.hpp).
+/// Either way the bond's stiffness is W ᾱ c_bond e eᵀ.
+template <int D>
+double bond_micromodulus(const Micromodulus& c, const Vec3& xi, double r2, const Vec3* half_g,
+                         const Vec3* half_h) {
+  if (half_g == nullptr) return r2 < horizon_cutoff_squared(c.horizon) ? c(std::sqrt(r2)) : 0.0;
+  const double r = std::sqrt(r2);
+  const EdgeWeight w = edge_weight<D>(xi, r, *half_g, *half_h, c.horizon);
+  if (w.fraction == 0.0) return 0.0;
+  if (w.fraction == 1.0 && w.r_eff == r) return c(r);
+  return w.fraction * c(w.r_eff) * (w.r_eff * w.r_eff) / r2;
 }
 
 /// True if the bond x_g–x_h crosses one of the cuts (a pre-crack removes it).
@@ -58,7 +78,9 @@ std::size_t pair_stiffness(const CellPoints& E, const CellPoints& F, bool same_c
   const int nE = E.nodes, nF = F.nodes;
   const int n = same_cell ? nE * D : (nE + nF) * D;
   for (int i = 0; i < n * n; ++i) block[i] = 0.0;
-  const double delta2 = horizon_cutoff_squared(c.horizon);
+  const bool partial = E.half != nullptr;
+  const double outer = c.horizon + E.half_bound + F.half_bound;
+  const double delta2 = partial ? outer * outer : horizon_cutoff_squared(c.horizon);
   std::size_t bonds = 0;
   std::array<double, max_cell_nodes * D * D> U{};
   std::array<double, D * D> T{};
@@ -82,10 +104,11 @@ std::size_t pair_stiffness(const CellPoints& E, const CellPoints& F, bool same_c
       const double r2 = xi.squaredNorm();
       if (r2 >= delta2 || r2 == 0.0) continue;
       if (!cuts.empty() && bond_cut(xg, F.x[h], cuts)) continue;
-      const double r = std::sqrt(r2);
       const double abar = unit_alpha ? 1.0 : 0.5 * (E.alpha[g] + F.alpha[h]);
       if (abar == 0.0) continue;
-      const double k = E.weight[g] * F.weight[h] * abar * c(r) / r2;  // G = ξξᵀ/r²
+      const double cb = partial ? bond_micromodulus<D>(c, xi, r2, E.half + g, F.half + h) : c(std::sqrt(r2));
+      if (cb == 0.0) continue;
+      const double k = E.weight[g] * F.weight[h] * abar * cb / r2;  // G = ξξᵀ/r²
       ++bonds;
       any = true;
       double kG[D * D];
