@@ -15,6 +15,7 @@
 #include "perimorph/driver/stiffness.hpp"
 #include "perimorph/fem/material.hpp"
 #include "perimorph/fem/shape.hpp"
+#include "perimorph/peridynamics/pair_kernel.hpp"
 #include "support/cases.hpp"
 
 #include <gtest/gtest.h>
@@ -41,6 +42,23 @@ Vec3 local_point(const driver::Model& m, Index c, int q) {
     x += N * m.mesh.node(nodes[static_cast<std::size_t>(a)]);
   }
   return x;
+}
+
+/// The box of local quadrature point q of cell c (fem::q1_point_box_half_widths
+/// with the local rule's 1D weights).
+Vec3 local_box(const driver::Model& m, Index c, int q) {
+  const int dim = m.dim();
+  int n = 1;
+  while (fem::gauss_legendre(dim, n).size() < m.rule.size()) ++n;
+  const Vec3 w = fem::gauss_legendre_line_weights(dim, n)[static_cast<std::size_t>(q)];
+  const auto nodes = m.mesh.cell(c);
+  auto box = [&]<int D>() {
+    fem::NodeCoords<D> X;
+    for (int a = 0; a < fem::q1_nodes<D>; ++a)
+      X.col(a) = m.mesh.node(nodes[static_cast<std::size_t>(a)]).template head<D>();
+    return fem::q1_point_box_half_widths<D>(X, m.rule[static_cast<std::size_t>(q)].xi, w);
+  };
+  return dim == 2 ? box.template operator()<2>() : box.template operator()<3>();
 }
 
 /// Reference stiffness of the case's (single, isotropic) material, as the model reduces it.
@@ -330,10 +348,24 @@ TEST(AssemblyMorphed, OneDimensionalStiffnessIsBetaTimesE0) {
 TEST(AssemblyMorphed, DiscreteEnergyIdentityUnderUniformStrain) {
   // 2D also with a thickness t ≠ 1: the point weights then carry t, and the
   // identity holds per unit volume only if the micromodulus is ĉ/t.
-  for (const auto& [dim, thickness] : {std::pair{2, 1.0}, std::pair{2, 0.4}, std::pair{3, 1.0}}) {
-    SCOPED_TRACE(::testing::Message() << dim << "D, thickness " << thickness);
+  // With partial-volume bonds the same identity holds with the box-pair weights
+  // (the local point's box being that of the local rule).
+  struct Setting {
+    int dim;
+    double thickness;
+    casefile::HorizonEdge edge;
+  };
+  for (const auto& [dim, thickness, edge] :
+       {Setting{2, 1.0, casefile::HorizonEdge::cutoff}, Setting{2, 0.4, casefile::HorizonEdge::cutoff},
+        Setting{3, 1.0, casefile::HorizonEdge::cutoff},
+        Setting{2, 0.4, casefile::HorizonEdge::partial_volume},
+        Setting{3, 1.0, casefile::HorizonEdge::partial_volume}}) {
+    const bool partial = edge == casefile::HorizonEdge::partial_volume;
+    SCOPED_TRACE(::testing::Message()
+                 << dim << "D, thickness " << thickness << (partial ? ", partial volume" : ""));
     auto c = ball_case(dim);
     c.model.thickness = thickness;
+    c.nonlocal.horizon_edge = edge;
     const auto m = driver::build_model(c);
     const auto& nl = *m.nonlocal;
     const Eigen::MatrixXd C0 = reference_C0(c);
@@ -363,11 +395,22 @@ TEST(AssemblyMorphed, DiscreteEnergyIdentityUnderUniformStrain) {
         if (!complete) continue;
         ++checked;
         double bond = 0.0, bulk = 0.0;  // ¼ Σ w ᾱ c η², ½ ε:D:ε
+        const Vec3 box = partial ? local_box(m, cell, q) : Vec3::Zero();
         for (std::size_t k = 0; k < nl.points.x.size(); ++k) {
           const Vec3 xi = nl.points.x[k] - x;
           const double r = xi.norm();
-          if (r == 0.0 || r * r >= delta * delta * (1.0 - 1e-10)) continue;  // open horizon, ties left out
-          const double w = nl.points.weight[k], cr = nl.kernel(r), abar = 0.5 * (a + nl.points.alpha[k]);
+          double cr = 0.0;
+          if (!partial) {
+            if (r == 0.0 || r * r >= delta * delta * (1.0 - 1e-10)) continue;  // open horizon, ties left out
+            cr = nl.kernel(r);
+          } else {
+            if (r == 0.0) continue;
+            cr = dim == 2
+                     ? peridynamics::bond_micromodulus<2>(nl.kernel, xi, r * r, &box, &nl.points.half[k])
+                     : peridynamics::bond_micromodulus<3>(nl.kernel, xi, r * r, &box, &nl.points.half[k]);
+            if (cr == 0.0) continue;
+          }
+          const double w = nl.points.weight[k], abar = 0.5 * (a + nl.points.alpha[k]);
           const double eta = xi.dot(eps * xi) / r;
           bond += 0.25 * w * abar * cr * eta * eta;
           bulk += 0.5 * w * cr * eta * eta * 0.5;  // ½ ε:(w c ξξξξ/(2r²)):ε = ¼ w c η²
@@ -380,9 +423,9 @@ TEST(AssemblyMorphed, DiscreteEnergyIdentityUnderUniformStrain) {
         EXPECT_LT(std::abs(hybrid - identity), 1e-12 * local_energy) << "cell " << cell << " point " << q;
       }
     std::printf(
-        "%dD (t = %.1f) energy identity at %d morphing-zone points: max rel. deviation %.2e; "
+        "%dD (t = %.1f%s) energy identity at %d morphing-zone points: max rel. deviation %.2e; "
         "hybrid vs ½ε:D:ε %.2e, vs ½ε:C0:ε %.2e\n",
-        dim, thickness, checked, worst, worst_vs_D, worst_vs_C0);
+        dim, thickness, partial ? ", partial volume" : "", checked, worst, worst_vs_D, worst_vs_C0);
     EXPECT_GT(checked, 0);
   }
 }

@@ -93,11 +93,14 @@ TEST(NonlocalConsistency, AlphaOneDegreeZeroIsMeshfreeSum) {
 
 /// Max |K u| over interior and boundary dofs for u = G x on every dof node of
 /// a fully non-local unit box; interior: farther than δ + h from the boundary.
-std::pair<double, double> uniform_strain_residual(int dim, casefile::Discretization dg, int quadrature) {
+std::pair<double, double> uniform_strain_residual(
+    int dim, casefile::Discretization dg, int quadrature,
+    casefile::HorizonEdge edge = casefile::HorizonEdge::cutoff) {
   const Index n = dim == 2 ? 12 : 10;
   auto c = testing::box_case(dim, {n, n, n}, Vec3::Constant(1.0), 1.0, 0.25);
   const double h = 1.0 / n, delta = 2.5 * h;
   testing::add_nonlocal(c, KernelKind::exponential, delta, delta / 5, quadrature, dg);
+  c.nonlocal.horizon_edge = edge;
   c.alpha.value = 1.0;
   const auto model = driver::build_model(c);
   auto K = driver::assemble_stiffness(model).K;
@@ -130,13 +133,17 @@ std::pair<double, double> uniform_strain_residual(int dim, casefile::Discretizat
 }
 
 TEST(NonlocalConsistency, UniformStrainInFullyNonlocalInteriorIsInEquilibriumCG) {
-  // CG: exact to round-off, by the point symmetry of the quadrature lattice about every interior node.
-  for (int dim : {2, 3}) {
-    const auto [interior, boundary] = uniform_strain_residual(dim, casefile::Discretization::continuous, 3);
-    std::printf("CG %dD: max interior residual %.3e, max boundary residual %.3e\n", dim, interior, boundary);
-    EXPECT_LT(interior, 1e-10 * boundary) << "dim " << dim;
-    EXPECT_GT(boundary, 0.0);
-  }
+  // CG: exact to round-off, by the point symmetry of the quadrature lattice
+  // about every interior node (the partial-volume weights keep that symmetry).
+  for (auto edge : {casefile::HorizonEdge::cutoff, casefile::HorizonEdge::partial_volume})
+    for (int dim : {2, 3}) {
+      const auto [interior, boundary] =
+          uniform_strain_residual(dim, casefile::Discretization::continuous, 3, edge);
+      std::printf("CG %dD %s: max interior residual %.3e, max boundary residual %.3e\n", dim,
+                  edge == casefile::HorizonEdge::cutoff ? "cut-off" : "partial volume", interior, boundary);
+      EXPECT_LT(interior, 1e-10 * boundary) << "dim " << dim;
+      EXPECT_GT(boundary, 0.0);
+    }
 }
 
 TEST(NonlocalConsistency, UniformStrainInFullyNonlocalInteriorDGResidualIsQuadratureError) {
@@ -155,17 +162,20 @@ TEST(NonlocalConsistency, UniformStrainInFullyNonlocalInteriorDGResidualIsQuadra
 }
 
 TEST(NonlocalConsistency, BitIdenticalForOneAndTwoThreads) {
-  auto c = testing::box_case(3, {6, 6, 6}, Vec3::Ones(), 90.0, 0.25);
-  testing::add_nonlocal(c, KernelKind::exponential, 0.5, 0.1, 3);
-  c.alpha.regions = {testing::alpha_ball(Vec3::Constant(0.5), 0.15, 0.2)};
-  const int saved = omp_get_max_threads();
-  omp_set_num_threads(1);
-  const Eigen::MatrixXd A = dense_stiffness(c);
-  omp_set_num_threads(2);
-  const Eigen::MatrixXd B = dense_stiffness(c);
-  omp_set_num_threads(saved);
-  ASSERT_EQ(A.size(), B.size());
-  EXPECT_EQ(std::memcmp(A.data(), B.data(), sizeof(double) * static_cast<std::size_t>(A.size())), 0);
+  for (auto edge : {casefile::HorizonEdge::cutoff, casefile::HorizonEdge::partial_volume}) {
+    auto c = testing::box_case(3, {6, 6, 6}, Vec3::Ones(), 90.0, 0.25);
+    testing::add_nonlocal(c, KernelKind::exponential, 0.5, 0.1, 3);
+    c.nonlocal.horizon_edge = edge;
+    c.alpha.regions = {testing::alpha_ball(Vec3::Constant(0.5), 0.15, 0.2)};
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(1);
+    const Eigen::MatrixXd A = dense_stiffness(c);
+    omp_set_num_threads(2);
+    const Eigen::MatrixXd B = dense_stiffness(c);
+    omp_set_num_threads(saved);
+    ASSERT_EQ(A.size(), B.size());
+    EXPECT_EQ(std::memcmp(A.data(), B.data(), sizeof(double) * static_cast<std::size_t>(A.size())), 0);
+  }
 }
 
 }  // namespace

@@ -51,7 +51,7 @@ void fill(const mesh::Mesh& mesh, const std::vector<fem::QuadraturePoint>& rule,
     p.cell_alpha_max[static_cast<std::size_t>(c)] = amax;
     p.cell_alpha_min[static_cast<std::size_t>(c)] = amin;
   }
-  for (const Vec3& b : p.half) p.half_bound = std::max(p.half_bound, b.cwiseAbs().sum());
+  for (const Vec3& b : p.half) p.half_bound = std::max(p.half_bound, b.norm());
 }
 
 }  // namespace

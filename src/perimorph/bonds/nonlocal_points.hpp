@@ -28,7 +28,8 @@ struct NonlocalPoints {
   /// Partial-volume option (peridynamics/horizon_edge.hpp): each point's box
   /// half-widths; empty for the plain cut-off (a bond counts iff |ξ| < δ).
   std::vector<Vec3> half;
-  /// max over points of Σ_i half_i: bonds reach at most δ + 2·half_bound.
+  /// max over points of |half|: a bond's reach Σ_i |e_i| (b_gi + b_hi) is at
+  /// most |b_g| + |b_h|, so bonds reach at most δ + 2·half_bound.
   double half_bound = 0.0;
 
   bool partial_volume() const { return !half.empty(); }

@@ -10,16 +10,17 @@
 // point a box (its share of the cell: half-widths b_i = ½ Σ_d |J_id| w_d, the
 // 1D Gauss weights w_d) and weighs a bond near the edge by the fraction of the
 // box pair (x_g + B_g, x_h + B_h) whose separation is inside the horizon,
-// with the sphere |ξ| = δ replaced by its tangent plane (normal e = ξ/|ξ|):
+// with the sphere |ξ| = δ replaced by a plane normal to e = ξ/|ξ|, moved in by
+// the mean curvature offset τ of the lateral spread (|ξ'| ≈ r + Z + |t|²/(2r)):
 //
-//   Z = e·(v_h − v_g), v uniform in the boxes;  φ = P(Z < δ − r),
-//   r_eff = r + E[Z | Z < δ − r]   (the mean separation of the inside part).
+//   Z = e·(v_h − v_g), v uniform in the boxes;  d = δ − r − τ;  φ = P(Z < d),
+//   r_eff = r + E[Z | Z < d]   (the mean separation of the inside part along e).
 //
 // The bond then acts with W φ c(r_eff) (r_eff / r)² e eᵀ: its energy under a
 // uniform strain, ½ W φ c(r_eff) r_eff² (e·ε·e)², is the box-pair integral of
-// the continuum energy density to second order. Bonds with r + reach ≤ δ are
-// untouched (φ = 1, r_eff = r) and bonds with r − reach ≥ δ are absent, where
-// reach = Σ_i |e_i| (b_gi + b_hi).
+// the continuum energy density to second order. Bonds with d ≥ reach are
+// untouched (φ = 1, r_eff = r) and bonds with d ≤ −reach are absent, where
+// reach = Σ_i |e_i| (b_gi + b_hi) (τ ≥ 0, so r − reach ≥ δ is absent too).
 
 #include "perimorph/core/types.hpp"
 
@@ -50,7 +51,17 @@ template <int D>
 EdgeWeight edge_weight(const Vec3& xi, double r, const Vec3& half_g, const Vec3& half_h, double delta) {
   const double reach = edge_reach<D>(xi, r, half_g, half_h);
   if (r + reach <= delta) return {1.0, r};
-  if (r - reach >= delta) return {0.0, r};
+  // Curvature: a lateral offset t moves the separation out by |t|²/(2r); its
+  // mean τ = Σ_i (1 − e_i²) (b_gi² + b_hi²)/3 / (2r) shifts the plane inwards.
+  double tau = 0.0;
+  for (int i = 0; i < D; ++i) {
+    const double e = xi[i] / r;
+    tau += (1.0 - e * e) * (half_g[i] * half_g[i] + half_h[i] * half_h[i]) / 3.0;
+  }
+  tau /= 2.0 * r;
+  const double d = delta - r - tau;
+  if (d >= reach) return {1.0, r};
+  if (d <= -reach) return {0.0, r};
   // Z = Σ_j U_j, U_j uniform on [−c_j/2, c_j/2]; widths below 1e-4 of the
   // largest are dropped (their effect is second order in the width, and the
   // alternating sum below loses digits as Π c_j → 0).
@@ -72,7 +83,6 @@ EdgeWeight edge_weight(const Vec3& xi, double r, const Vec3& half_g, const Vec3&
   // S = Σ V_j with V_j uniform on [0, c_j]: Z < d ⇔ S < t = d + total/2.
   // F(t) = Σ_{subsets A} (−1)^|A| (t − c_A)₊^k / (k! Π c),
   // ∫₀^t F = Σ_A (−1)^|A| (t − c_A)₊^(k+1) / ((k+1)! Π c).
-  const double d = delta - r;
   const double t = d + 0.5 * total;
   double F = 0.0, G = 0.0;
   for (int mask = 0; mask < (1 << k); ++mask) {
@@ -94,8 +104,10 @@ EdgeWeight edge_weight(const Vec3& xi, double r, const Vec3& half_g, const Vec3&
   G /= fact * (k + 1) * prod;
   if (F <= 0.0) return {0.0, r};
   if (F >= 1.0) F = 1.0;
-  // E[S | S < t] = t − G/F, so r_eff = r + E[Z | Z < d] = r + d − G/F = δ − G/F.
-  return {F, delta - G / F};
+  // E[S | S < t] = t − G/F, so r_eff = r + E[Z | Z < d] = r + d − G/F (the
+  // kernel is read at the inside part's mean along e; continuous with r_eff = r
+  // at d = reach, where F = 1 and E[Z] = 0).
+  return {F, r + d - G / F};
 }
 
 }  // namespace perimorph::peridynamics

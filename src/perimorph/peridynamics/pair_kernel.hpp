@@ -31,7 +31,7 @@ struct CellPoints {
   const double* shape = nullptr;  ///< count × nodes, row q = point q
   int nodes = 0;                  ///< 8, 4, 2 (Q1) or 1 (DG degree 0)
   /// Partial-volume option: the points' box half-widths (null: plain cut-off)
-  /// and a bound on Σ_i half_i over the points.
+  /// and a bound on |half| over the points.
   const Vec3* half = nullptr;
   double half_bound = 0.0;
 };
