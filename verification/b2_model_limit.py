@@ -78,7 +78,7 @@ class Run:
         self.length, self.h, self.edge, self.q = length, h, edge, q
         self.cells = int(round(SIZE / h))
         assert abs(self.cells * h - SIZE) < 1e-12
-        self.pin = 0.1 * h / H0  # half-width of the pin box
+        self.pin = round(0.1 * h / H0, 12)  # half-width of the pin box
         self.name = f"l{length:g}_h{h:g}_{'pv' if edge == 'partial-volume' else 'cut'}_q{q}".replace(".", "p")
 
     def toml(self, template):

@@ -1,14 +1,11 @@
 #include "perimorph/io/pvd_writer.hpp"
 
 #include "perimorph/core/error.hpp"
+#include "perimorph/io/atomic_file.hpp"
 
 #include <fmt/format.h>
 
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <stdexcept>
 #include <string_view>
@@ -70,17 +67,9 @@ void PvdCollection::rewrite() const {
   out += "  </Collection>\n";
   out += "</VTKFile>\n";
 
-  const std::string tmp_path = path_ + ".tmp";
-  {
-    std::ofstream file(tmp_path, std::ios::binary | std::ios::trunc);
-    if (!file) throw Error(fmt::format("cannot open '{}' for writing: {}", tmp_path, std::strerror(errno)));
-    file.write(out.data(), static_cast<std::streamsize>(out.size()));
-    file.close();
-    if (!file) throw Error(fmt::format("error while writing '{}'", tmp_path));
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp_path, path_, ec);
-  if (ec) throw Error(fmt::format("cannot rename '{}' to '{}': {}", tmp_path, path_, ec.message()));
+  AtomicFile file(path_);
+  file.write(out);
+  file.commit();
 }
 
 }  // namespace perimorph::io

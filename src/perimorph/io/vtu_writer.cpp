@@ -1,16 +1,13 @@
 #include "perimorph/io/vtu_writer.hpp"
 
 #include "perimorph/core/error.hpp"
+#include "perimorph/io/atomic_file.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <set>
 #include <stdexcept>
@@ -226,13 +223,10 @@ void write_vtu(const std::string& path, const UnstructuredGrid& grid, VtuEncodin
 
   // The file is assembled in memory array by array and streamed out, so
   // peak extra memory is about one array's encoded size.
-  const std::string tmp_path = path + ".tmp";
-  std::ofstream file(tmp_path, std::ios::binary | std::ios::trunc);
-  if (!file) throw Error(fmt::format("cannot open '{}' for writing: {}", tmp_path, std::strerror(errno)));
-
+  AtomicFile file(path);
   std::string out;
   auto flush = [&] {
-    file.write(out.data(), static_cast<std::streamsize>(out.size()));
+    file.write(out);
     out.clear();
   };
 
@@ -280,12 +274,7 @@ void write_vtu(const std::string& path, const UnstructuredGrid& grid, VtuEncodin
   out += "  </UnstructuredGrid>\n";
   out += "</VTKFile>\n";
   flush();
-
-  file.close();
-  if (!file) throw Error(fmt::format("error while writing '{}'", tmp_path));
-  std::error_code ec;
-  std::filesystem::rename(tmp_path, path, ec);
-  if (ec) throw Error(fmt::format("cannot rename '{}' to '{}': {}", tmp_path, path, ec.message()));
+  file.commit();
 }
 
 }  // namespace perimorph::io
