@@ -164,13 +164,13 @@ def main(argv):
     args = ap.parse_args(argv)
     command = " ".join(["/usr/bin/python3" if sys.executable == "/usr/bin/python3" else sys.executable]
                        + [os.path.relpath(os.path.abspath(sys.argv[0]), REPO)] + argv)
-    date = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
-    head = subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True,
-                          text=True).stdout.strip()
+    date = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    head = git_head()
     out = os.path.abspath(args.out)
     exe = os.path.abspath(args.perimorph)
     if not os.access(exe, os.X_OK):
         sys.exit(f"perimorph binary not found or not executable: {exe}")
+    built = datetime.datetime.fromtimestamp(os.path.getmtime(exe), datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     os.makedirs(out, exist_ok=True)
     os.makedirs(args.results, exist_ok=True)
     with open(TEMPLATE) as f:
@@ -183,6 +183,7 @@ def main(argv):
     for run in runs:
         R[run.name], P[run.name] = execute(run, exe, out, template, args.reuse)
     t_runs = time.time() - t0
+    head_end = git_head()
 
     def get(l, h, e, q):
         return R[Run(l, h, e, q).name]
@@ -192,14 +193,17 @@ def main(argv):
     for l, _ in LENGTHS:
         c, f = P[Run(l, 0.75, "partial-volume", 4).name]["coarse"], P[Run(l, 0.375, "partial-volume", 4).name]["coarse"]
         ext = f + (f - c) / 3
-        rich[l] = {"max_err_extrapolated": float(np.nanmax(np.abs(ext))),
-                   "max_change_fine_minus_coarse": float(np.nanmax(np.abs(f - c)))}
+        change, fmax = float(np.nanmax(np.abs(f - c))), float(np.nanmax(np.abs(f)))
+        rich[l] = {"max_err_extrapolated": float(np.nanmax(np.abs(ext))), "max_change_fine_minus_coarse": change,
+                   # the step changes the field by more than half its size: not asymptotic, estimate not usable
+                   "pre_asymptotic": change > 0.5 * fmax}
 
     # ---- markdown ----
     L = []
     L.append("# B2 — the model limit: discretization study of the ε_yy error (cubic profile, extension)\n")
-    L.append(f"Command: `{command}`  \nDate: {date}  \nRepository: `git rev-parse --short HEAD` = `{head}` "
-             f"({source_state()}); program `{exe}`. {len(runs)} runs, one at a time on one core "
+    L.append(f"Command: `{command}`  \nDate: {date}  \n`git rev-parse --short HEAD`: `{head}`"
+             + (f" at the start, `{head_end}` at the end (commits by others during the runs)" if head_end != head
+                else "") + f" ({source_state()})  \nProgram: `{exe}` (built {built}). {len(runs)} runs, one at a time on one core "
              f"(OMP_NUM_THREADS=1), {t_runs:.0f} s in all.\n")
     L.append("The B2 plate of `examples/b2_plate_uniform_2d/case.toml` (48 µm, plane strain, E = 251.3 GPa, "
              "ν = 1/4, exponential kernel, δ = 2.625 µm, α = 1 for r < 9 µm, cubic transition to α = 0 at "
@@ -216,27 +220,29 @@ def main(argv):
              "'max on 0.75 cells': max |e| after averaging the field onto the h = 0.75 cells (2 × 2 fine cells "
              "per coarse cell; = 'max |e|' for h = 0.75), the fair comparison of a fine run with a coarse one. "
              f"The BENCHMARKS.md B2 bar is max |e| < {100 * BAR:g}%.\n")
-    header = ["l [µm]", "h [µm]", "horizon edge", "q", "max abs e", "signed", "at r [µm]", "centre e",
+    header = ["l [µm]", "h [µm]", "horizon edge", "q", "spacing h/q [µm]", "max abs e", "signed", "at r [µm]", "centre e",
               "disk mean e (r < 9)", "max on 0.75 cells", "< 0.5%", "wall s"]
     rows = []
     for run in runs:
         r = R[run.name]
-        rows.append([f"{run.length:g}", f"{run.h:g}", run.edge, f"{run.q}", f"**{100 * r['max_err']:.3f}%**",
+        rows.append([f"{run.length:g}", f"{run.h:g}", run.edge, f"{run.q}", f"{run.h / run.q:.3f}",
+                     f"**{100 * r['max_err']:.3f}%**",
                      f"{100 * r['signed_max_err']:+.3f}%", f"{r['at_r']:.2f}", f"{100 * r['centre_err']:+.3f}%",
                      f"{100 * r['disk_mean_err']:+.3f}%", f"{100 * r['max_err_on_h0_cells']:.3f}%",
                      "yes" if r["max_err"] < BAR else "no", f"{r['wall_s']:.1f}"])
     table = md_table(header, rows)
     L.append("## Results\n")
     L.append(table + "\n")
-    L.append("Sanity: the plate mean of e is " + ", ".join(f"{R[r.name]['average_dev']:.1e}" for r in runs[:1])
-             + f" … (max |mean| over the runs {max(abs(x['average_dev']) for x in R.values()):.1e}; the "
-             "displacement is prescribed on both edges that bound ε_yy, so it must vanish); the two middle "
-             "columns agree to "
+    L.append("Sanity: the plate mean of e is at most "
+             f"{max(abs(x['average_dev']) for x in R.values()):.1e} in magnitude (it must vanish: the "
+             "displacement is prescribed on both edges that bound ε_yy); the two middle columns of cells agree to "
              f"{max(x['centre_column_asymmetry'] for x in R.values()):.1e} (symmetry about x = 24).\n")
     L.append("Richardson estimate (order 2, on the h = 0.75 cells, partial volume, 4 × 4 points; "
              "e₀ ≈ e_fine + (e_fine − e_coarse)/3): " + "; ".join(
                  f"l = {l:g}: max |e₀| ≈ {100 * rich[l]['max_err_extrapolated']:.2f}% (largest change of a cell's "
-                 f"e from h = 0.75 to 0.375: {100 * rich[l]['max_change_fine_minus_coarse']:.2f} points)"
+                 f"e from h = 0.75 to 0.375: {100 * rich[l]['max_change_fine_minus_coarse']:.2f} points"
+                 + ("; more than half the field itself: the coarse level is pre-asymptotic and this estimate is "
+                    "not usable" if rich[l]["pre_asymptotic"] else "") + ")"
                  for l, _ in LENGTHS) + ". Two levels only: the order is assumed, not measured.\n")
 
     # ---- conclusion (from the numbers) ----
@@ -248,7 +254,8 @@ def main(argv):
     with open(base + ".md", "w") as f:
         f.write(md)
     write_json(base + ".json", {
-        "study": "B2 model limit", "command": command, "date": date, "head": head, "program": exe,
+        "study": "B2 model limit", "command": command, "date": date, "head": head, "head_end": head_end,
+        "program": exe, "program_built": built,
         "source": source_state(),
         "parameters": {"strain": EPS, "size": SIZE, "horizon": DELTA, "radius": RADIUS, "transition": TRANSITION,
                        "profile": "cubic", "loading": "extension", "calibration": "continuum", "bar": BAR,
@@ -261,40 +268,97 @@ def main(argv):
     return 0
 
 
+def git_head():
+    return subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True,
+                          text=True).stdout.strip()
+
+
 def conclusion(get, rich):
-    out = []
+    """Plain-words reading, with each claim conditioned on the numbers that support it."""
+    out, verdict = [], {}
+    pc = lambda v: f"{100 * v:.2f}%"  # noqa: E731
+    pt = lambda v, d=2: f"{100 * v:.{d}f} points"  # noqa: E731
     for l, label in LENGTHS:
         cut = get(l, 0.75, "cutoff", 4)
         pv4, pv6 = get(l, 0.75, "partial-volume", 4), get(l, 0.75, "partial-volume", 6)
         f3, f4 = get(l, 0.375, "partial-volume", 3), get(l, 0.375, "partial-volume", 4)
-        vals = [cut["max_err"], pv4["max_err"], pv6["max_err"], f3["max_err"], f4["max_err"]]
-        spread = max(vals) - min(vals)
-        below = [v < BAR for v in vals]
-        s = (f"- **l = {label}.** Max |e|: {100 * cut['max_err']:.2f}% (h = 0.75, cut-off, 4 × 4), "
-             f"{100 * pv4['max_err']:.2f}% (partial volume, 4 × 4), {100 * pv6['max_err']:.2f}% (6 × 6), "
-             f"{100 * f3['max_err']:.2f}% / {100 * f4['max_err']:.2f}% (h = 0.375, 3 × 3 / 4 × 4; "
-             f"{100 * f4['max_err_on_h0_cells']:.2f}% on the 0.75 cells); disk mean "
-             f"{100 * cut['disk_mean_err']:+.2f}% → {100 * f4['disk_mean_err']:+.2f}%; Richardson "
-             f"≈ {100 * rich[l]['max_err_extrapolated']:.2f}%. ")
-        rel = spread / max(vals)
-        if all(not b for b in below) and min(vals) > 2 * BAR:
-            s += (f"Every discretization gives {100 * min(vals):.2f}–{100 * max(vals):.2f}% (spread "
-                  f"{100 * rel:.0f}% of the largest), far above the 0.5% bar: halving h, more points and the "
-                  "second-order edge rule move the maximum little, so this error is the hybrid continuum model's "
-                  "with these parameters (the morphing zone's ghost force), not a discretization error.")
-        elif below[-1] and below[-2] and not below[0]:
-            s += ("The error converges below the 0.5% bar: the coarse cut-off result is a discretization error "
-                  "(the kernel under-resolved), and the converged model meets the benchmark.")
-        elif below[-1]:
-            s += "The finest run is below the bar; " + ("the h = 0.375, 3 × 3 run is not, so the convergence is "
-                                                        "not settled." if not below[-2] else "")
+        allr = [cut, pv4, pv6, f3, f4]
+        vals = [r["max_err"] for r in allr]
+        ra, rb = f"{min(r['at_r'] for r in allr):.1f}", f"{max(r['at_r'] for r in allr):.1f}"
+        s = (f"- **l = {label}.** Max |e| {pc(cut['max_err'])} (h = 0.75, cut-off, 4 × 4), {pc(pv4['max_err'])} "
+             f"(partial volume, 4 × 4), {pc(pv6['max_err'])} (6 × 6), {pc(f3['max_err'])} / {pc(f4['max_err'])} "
+             f"(h = 0.375, 3 × 3 / 4 × 4; {pc(f4['max_err_on_h0_cells'])} on the 0.75 cells), at r = "
+             + (ra if ra == rb else f"{ra}–{rb}") + " µm in every run; centre "
+             f"{100 * cut['centre_err']:+.2f}% → {100 * f4['centre_err']:+.2f}%, disk mean "
+             f"{100 * cut['disk_mean_err']:+.2f}% → {100 * f4['disk_mean_err']:+.2f}%. ")
+        edge = abs(cut["max_err"] - pv4["max_err"])
+        if edge < 1e-5:
+            s += (f"Cut-off and partial volume give the same field (max differs by {edge:.0e}): with "
+                  f"l = {l:g} µm the kernel at the horizon's edge is e^(−δ/l) = {np.exp(-DELTA / l):.0e} of its "
+                  "scale, so the edge rule has nothing to act on. ")
         else:
-            s += (f"Even the finest run ({100 * f4['max_err']:.2f}%) stays above the 0.5% bar"
-                  + (f", and the Richardson estimate ({100 * rich[l]['max_err_extrapolated']:.2f}%) too"
-                     if rich[l]["max_err_extrapolated"] >= BAR else
-                     f"; only the Richardson estimate ({100 * rich[l]['max_err_extrapolated']:.2f}%) goes below it, "
-                     "which two levels cannot confirm") + ".")
+            s += f"The edge rule changes the max by {pt(edge)} and the centre error by " \
+                 f"{pt(abs(cut['centre_err'] - pv4['centre_err']))}. "
+        if min(vals) >= BAR:
+            h_step = abs(f4["max_err_on_h0_cells"] - pv4["max_err"])
+            q_step = max(abs(pv6["max_err"] - pv4["max_err"]), abs(f4["max_err"] - f3["max_err"]))
+            verdict[l] = "model"
+            s += (f"Every discretization stays at {pc(min(vals))}–{pc(max(vals))}, at least "
+                  f"{min(vals) / BAR:.1f} × the 0.5% bar. Refining no longer moves it: more points per cell change "
+                  f"the max by ≤ {pt(q_step, 3)}, halving h changes it by {pt(h_step)} on the same (0.75 µm) cells "
+                  f"(Richardson, order 2: ≈ {pc(rich[l]['max_err_extrapolated'])}), and the centre-line profile "
+                  f"has the same shape on both meshes (the 0.75 µm cell means differ by ≤ "
+                  f"{pt(rich[l]['max_change_fine_minus_coarse'])}); the finer cells only resolve the peak a little better "
+                  f"({pc(f4['max_err'])}). What converges away is the disk's stiffness error (centre → "
+                  f"{100 * f4['centre_err']:+.2f}%); the peak at r ≈ {f4['at_r']:.1f} µm"
+                  + (f", just inside the disk's edge (r = {RADIUS:g} µm) where the cubic α starts to fall,"
+                     if RADIUS - DELTA < f4["at_r"] < RADIUS else "") + " does not. So about "
+                  f"{100 * rich[l]['max_err_extrapolated']:.1f}% (0.75 µm cell means) to "
+                  f"{100 * f4['max_err']:.1f}% (0.375 µm cells) is the error of the hybrid continuum model itself "
+                  "with these parameters (kernel, δ, 6 µm cubic ring): the B2 bar cannot be reached with l = δ/5 "
+                  "by refining the discretization.")
+        else:
+            fine = [pv6, f3, f4]  # non-local point spacing h/q <= 0.125 µm
+            last = max(abs(f4["max_err"] - f3["max_err"]), abs(f4["max_err"] - pv6["max_err"]))
+            if all(r["max_err"] < BAR for r in fine) and last < BAR - f4["max_err"]:
+                verdict[l] = "below"
+                s += (f"The coarse error is a discretization error: at h/q = {0.75 / 4:.4g} µm "
+                      f"({0.75 / 4 / l:.1f} l) the points under-resolve the kernel and the disk is off by "
+                      f"{100 * cut['centre_err']:+.2f}% as a whole. With h/q ≤ 0.125 µm ({0.125 / l:.2f} l) the "
+                      f"centre error is {min(100 * r['centre_err'] for r in fine):+.2f}% to "
+                      f"{max(100 * r['centre_err'] for r in fine):+.2f}% and the max is "
+                      f"{pc(min(r['max_err'] for r in fine))}–{pc(max(r['max_err'] for r in fine))}; "
+                      f"the last refinements move it by ≤ {pt(last, 3)}, less than the "
+                      f"{pt(BAR - f4['max_err'])} left to the bar. So the error converges below 0.5% "
+                      f"(≈ {100 * f4['max_err']:.2f}% on 0.375 µm cells, {100 * f4['max_err_on_h0_cells']:.2f}% as "
+                      f"0.75 µm cell means, in the ring at r ≈ {f4['at_r']:.1f} µm), with a margin of about "
+                      f"{100 * (BAR - f4['max_err']):.1f} points: the B2 bar is met with the thesis' kernel length "
+                      "once the non-local points resolve it, but not with the 4 × 4 points at h = 0.75 µm.")
+                if rich[l]["pre_asymptotic"]:
+                    s += (" (The h-Richardson estimate is not used here: h = 0.75 with 4 × 4 points is "
+                          "pre-asymptotic.)")
+            elif f4["max_err"] < BAR:
+                verdict[l] = "unsettled"
+                s += (f"The finest run is below the bar ({pc(f4['max_err'])}) but the last refinements move the "
+                      f"max by {pt(last)}, not less than the margin to the bar: convergence below 0.5% is not "
+                      "established by these runs.")
+            else:
+                verdict[l] = "above"
+                s += (f"Even the finest run ({pc(f4['max_err'])}) stays above the 0.5% bar: with these runs the "
+                      "thesis' kernel length does not meet the benchmark either.")
         out.append(s)
+    (lb, _), (lt, _) = LENGTHS
+    if verdict.get(lb) == "model" and verdict.get(lt) == "below":
+        vb = [get(lb, h, e, q)["max_err"] for h, e, q in DISCRETIZATIONS]
+        eb = get(lb, 0.75, "cutoff", 4)["max_err"] - get(lb, 0.75, "partial-volume", 4)["max_err"]
+        out.append(f"In short: the {pc(min(vb))}–{pc(max(vb))} of B2 with l = δ/5 is, apart from the "
+                   f"{pt(eb)} that the first-order cut-off adds at h = 0.75, the limit of the model, not "
+                   f"a discretization error; the thesis' < 0.5% is reproduced with its own kernel length "
+                   f"l = {lt:g} µm, provided the non-local quadrature resolves that kernel (point spacing ≤ 0.125 µm; "
+                   f"the 4 × 4 points on the thesis' 0.75 µm grid give {pc(get(lt, 0.75, 'cutoff', 4)['max_err'])}). "
+                   "All runs use the continuum calibration; the discrete one differs from it by the quadrature "
+                   "error of the bulk tensor, which vanishes as the discretization converges, so the limit should "
+                   "not depend on it (not run here).")
     return [x + "\n" for x in out]
 
 
@@ -302,10 +366,13 @@ def plot(base, runs, R, P):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import matplotlib.ticker  # noqa: F401
     colors = {0.525: "tab:blue", 0.1: "tab:red"}
     markers = {("cutoff", 4): ("x", "cut-off, 4×4"), ("partial-volume", 4): ("o", "partial volume, 4×4"),
                ("partial-volume", 6): ("s", "partial volume, 6×6"), ("partial-volume", 3): ("^", "partial volume, 3×3")}
-    fig, ax = plt.subplots(1, 2, figsize=(15, 6))
+    jitter = {("cutoff", 4): 0.955, ("partial-volume", 4): 1.0, ("partial-volume", 6): 1.045,
+              ("partial-volume", 3): 0.955}
+    fig, ax = plt.subplots(1, 2, figsize=(15, 7.2))
     a = ax[0]
     for l, label in LENGTHS:
         for (e, q), (mk, txt) in markers.items():
@@ -313,22 +380,29 @@ def plot(base, runs, R, P):
             if not pts:
                 continue
             hs, v = zip(*pts)
+            hs = np.array(hs) * jitter[(e, q)]  # side by side, not on top of each other
             a.plot(hs, 100 * np.array(v), mk + ("-" if len(pts) > 1 else ""), color=colors[l], ms=9,
                    mfc="none" if mk != "x" else None, label=f"l = {label}, {txt}")
     a.axhline(100 * BAR, color="k", ls="--", lw=1.2, label="BENCHMARKS bar 0.5%")
     a.set_xscale("log")
     a.set_yscale("log")
-    a.set_xticks([0.375, 0.75])
-    a.set_xticklabels(["0.375", "0.75"])
+    a.xaxis.set_major_locator(matplotlib.ticker.FixedLocator([0.375, 0.75]))
+    a.xaxis.set_major_formatter(matplotlib.ticker.FixedFormatter(["0.375", "0.75"]))
+    a.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    a.yaxis.set_major_locator(matplotlib.ticker.FixedLocator([0.2, 0.3, 0.5, 1, 2, 3, 5]))
+    a.yaxis.set_major_formatter(matplotlib.ticker.FixedFormatter(["0.2", "0.3", "0.5", "1", "2", "3", "5"]))
+    a.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
     a.set_xlim(0.3, 0.95)
-    a.set_xlabel("mesh size h [µm] (δ = 2.625 µm fixed)")
+    a.set_ylim(0.2, 5)
+    a.set_xlabel("mesh size h [µm] (δ = 2.625 µm fixed; markers at one h drawn side by side)")
     a.set_ylabel("max |ε_yy/ε̄ − 1| [%]")
-    a.set_title("(a) max error vs h, cubic profile, extension", fontsize=11)
+    a.set_title("(a) max error vs h, cubic profile, extension (l = 0.1: cut-off = partial volume at 4×4)",
+                fontsize=11)
     a.grid(which="both", alpha=0.3)
-    a.legend(fontsize=8)
+    a.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
     a = ax[1]
-    styles = {(0.375, "partial-volume", 4): ("-", 1.4), (0.375, "partial-volume", 3): ("--", 1.0),
-              (0.75, "cutoff", 4): (":", 1.0)}
+    styles = {(0.375, "partial-volume", 4): ("-", 1.6), (0.375, "partial-volume", 3): ("--", 1.0),
+              (0.75, "partial-volume", 4): (":", 1.2), (0.75, "cutoff", 4): ("-.", 0.7)}
     for l, label in LENGTHS:
         for (h, e, q), (ls, lw) in styles.items():
             name = Run(l, h, e, q).name
@@ -342,7 +416,7 @@ def plot(base, runs, R, P):
     a.set_ylabel("ε_yy/ε̄ − 1 [%]")
     a.set_title("(b) error along the vertical centre line (finest runs solid)", fontsize=11)
     a.grid(alpha=0.3)
-    a.legend(fontsize=7.5, loc="lower center")
+    a.legend(fontsize=7.5, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
     fig.tight_layout()
     fig.savefig(base + ".png", dpi=90)
     plt.close(fig)
