@@ -55,6 +55,7 @@
 #include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/bonds/nonlocal_points.hpp"
 #include "perimorph/dofs/dof_map.hpp"
+#include "perimorph/fem/quadrature.hpp"
 #include "perimorph/la/matrix.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/mesh/box.hpp"
@@ -137,6 +138,14 @@ peridynamics::Micromodulus kernel_for(double h) {
   return k;
 }
 
+/// The reference coordinates of an n-per-direction Gauss rule (the points'
+/// boxes decide the cell graph, as in driver::build_model).
+std::vector<Vec3> reference_points(int n) {
+  std::vector<Vec3> out;
+  for (const auto& p : fem::gauss_legendre(kDim, n)) out.push_back(p.xi);
+  return out;
+}
+
 /// Everything the non-local assembly reads, for one configuration.
 struct Problem {
   mesh::Mesh mesh;
@@ -151,7 +160,7 @@ struct Problem {
         alpha(std::move(a)),
         kernel(kernel_for(1.0 / static_cast<double>(n))),
         points(bonds::make_nonlocal_points(mesh, q, 1.0, alpha)),
-        graph(bonds::find_cell_neighbors(mesh, kernel.horizon,
+        graph(bonds::find_cell_neighbors(mesh, bonds::point_boxes(mesh, reference_points(q)), kernel.horizon,
                                          [this](Index e, Index f) {
                                            return points.cell_alpha_max[static_cast<std::size_t>(e)] > 0.0 ||
                                                   points.cell_alpha_max[static_cast<std::size_t>(f)] > 0.0;
@@ -178,12 +187,12 @@ struct Estimate {
   double gb() const { return nnz * kBytesPerNonzero / 1e9; }
 };
 
-// Cost model (seconds per unit), measured at N = 10 on the 2-core EPYC while
-// another engineer's runs used about one core; only used to skip
-// configurations. MatSetValues dominates: ~39 ns per added value in CG rows
-// (~1,800 columns), ~83 ns in DG rows (~7,000 columns).
-constexpr double kSecondsPerInsertedValueCG = 40e-9;
-constexpr double kSecondsPerInsertedValueDG = 90e-9;
+// Cost model (seconds per unit), measured at N = 10 on the 2-core EPYC; only
+// used to skip configurations. Insertion dominates: ~9 ns per added value with
+// the direct CSR insertion of la::Matrix (it was ~40 ns in CG rows and ~85 ns
+// in DG rows through MatSetValues).
+constexpr double kSecondsPerInsertedValueCG = 10e-9;
+constexpr double kSecondsPerInsertedValueDG = 10e-9;
 constexpr double kSecondsPerNonzero = 30e-9;  // pattern, matrix creation with explicit zeros
 constexpr double kSecondsPerBond = 150e-9;    // one thread
 

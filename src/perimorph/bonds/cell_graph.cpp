@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 
 namespace perimorph::bonds {
@@ -44,29 +45,68 @@ std::size_t CellGraph::num_pairs() const {
   return n;
 }
 
-CellGraph find_cell_neighbors(const mesh::Mesh& mesh, double horizon,
-                              const std::function<bool(Index, Index)>& keep) {
-  const int dim = mesh.dim();
+CellBoxes node_boxes(const mesh::Mesh& mesh) {
   const Index ncells = mesh.num_cells();
-  std::vector<Vec3> lo(static_cast<std::size_t>(ncells)), hi(static_cast<std::size_t>(ncells));
-  double extent = 0.0;
-  for (Index c = 0; c < ncells; ++c) {
-    Vec3 l, h;
-    for (int d = 0; d < 3; ++d) {
-      l[d] = std::numeric_limits<double>::max();
-      h[d] = std::numeric_limits<double>::lowest();
-    }
+  CellBoxes b;
+  b.lo.assign(static_cast<std::size_t>(ncells), Vec3::Constant(std::numeric_limits<double>::max()));
+  b.hi.assign(static_cast<std::size_t>(ncells), Vec3::Constant(std::numeric_limits<double>::lowest()));
+  for (Index c = 0; c < ncells; ++c)
     for (Index n : mesh.cell(c)) {
       const Vec3& x = mesh.node(n);
       for (int d = 0; d < 3; ++d) {
-        l[d] = std::min(l[d], x[d]);
-        h[d] = std::max(h[d], x[d]);
+        b.lo[static_cast<std::size_t>(c)][d] = std::min(b.lo[static_cast<std::size_t>(c)][d], x[d]);
+        b.hi[static_cast<std::size_t>(c)][d] = std::max(b.hi[static_cast<std::size_t>(c)][d], x[d]);
       }
     }
-    lo[static_cast<std::size_t>(c)] = l;
-    hi[static_cast<std::size_t>(c)] = h;
-    for (int d = 0; d < dim; ++d) extent = std::max(extent, h[d] - l[d]);
+  return b;
+}
+
+CellBoxes point_boxes(const mesh::Mesh& mesh, std::span<const Vec3> reference_points) {
+  const Index ncells = mesh.num_cells();
+  const int dim = mesh.dim();
+  CellBoxes b;
+  b.lo.assign(static_cast<std::size_t>(ncells), Vec3::Zero());
+  b.hi.assign(static_cast<std::size_t>(ncells), Vec3::Zero());
+  for (Index c = 0; c < ncells; ++c) {
+    const auto nodes = mesh.cell(c);
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::max());
+    Vec3 hi = Vec3::Constant(std::numeric_limits<double>::lowest());
+    for (const Vec3& xi : reference_points) {
+      Vec3 x = Vec3::Zero();
+      for (int a = 0; a < mesh.nodes_per_cell(); ++a) {
+        double N = 1.0;
+        for (int d = 0; d < dim; ++d) N *= 0.5 * (1.0 + mesh::reference_node_coordinate(a, d) * xi[d]);
+        x += N * mesh.node(nodes[static_cast<std::size_t>(a)]);
+      }
+      for (int d = 0; d < 3; ++d) {
+        lo[d] = std::min(lo[d], x[d]);
+        hi[d] = std::max(hi[d], x[d]);
+      }
+    }
+    b.lo[static_cast<std::size_t>(c)] = lo;
+    b.hi[static_cast<std::size_t>(c)] = hi;
   }
+  return b;
+}
+
+CellGraph find_cell_neighbors(const mesh::Mesh& mesh, double reach,
+                              const std::function<bool(Index, Index)>& keep) {
+  return find_cell_neighbors(mesh, node_boxes(mesh), reach, keep);
+}
+
+CellGraph find_cell_neighbors(const mesh::Mesh& mesh, const CellBoxes& boxes, double reach,
+                              const std::function<bool(Index, Index)>& keep) {
+  const int dim = mesh.dim();
+  const Index ncells = mesh.num_cells();
+  PERIMORPH_ASSERT(boxes.lo.size() == static_cast<std::size_t>(ncells) && boxes.hi.size() == boxes.lo.size(),
+                   "one box per cell");
+  const auto& lo = boxes.lo;
+  const auto& hi = boxes.hi;
+  const double horizon = reach;
+  double extent = 0.0;
+  for (Index c = 0; c < ncells; ++c)
+    for (int d = 0; d < dim; ++d)
+      extent = std::max(extent, hi[static_cast<std::size_t>(c)][d] - lo[static_cast<std::size_t>(c)][d]);
   // Bins of size ≥ horizon + extent: interacting cells have centroids in
   // adjacent bins.
   const double bin = horizon + extent;

@@ -37,9 +37,28 @@ struct CellGraph {
   static CellGraph from_pairs(Index num_cells, std::span<const std::pair<Index, Index>> pairs);
 };
 
-/// Pairs of cells whose closed bounding boxes (of their nodes) are closer than
-/// `horizon`, kept only if `keep(E, F)` holds (all pairs if empty).
-CellGraph find_cell_neighbors(const mesh::Mesh& mesh, double horizon,
+/// One axis-aligned box per cell (lo, hi) containing every point of the cell
+/// that can carry a bond.
+struct CellBoxes {
+  std::vector<Vec3> lo, hi;
+};
+
+/// The boxes of the cells' nodes (the whole cells).
+CellBoxes node_boxes(const mesh::Mesh& mesh);
+
+/// The boxes of the cells' quadrature points: the images of the reference
+/// points (Q1 map) of every rule given, so a box covers the local and the
+/// non-local points. Tighter than node_boxes: Gauss points stay inside.
+CellBoxes point_boxes(const mesh::Mesh& mesh, std::span<const Vec3> reference_points);
+
+/// Pairs of cells whose closed boxes are closer than `reach` (the largest
+/// separation that carries a bond), kept only if `keep(E, F)` holds (all pairs
+/// if empty). Cell lists on the boxes' centres: no all-pairs loop.
+CellGraph find_cell_neighbors(const mesh::Mesh& mesh, const CellBoxes& boxes, double reach,
+                              const std::function<bool(Index, Index)>& keep = {});
+
+/// The same with node_boxes.
+CellGraph find_cell_neighbors(const mesh::Mesh& mesh, double reach,
                               const std::function<bool(Index, Index)>& keep = {});
 
 }  // namespace perimorph::bonds

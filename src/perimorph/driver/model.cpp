@@ -131,10 +131,17 @@ Model build_model(const casefile::CaseConfig& config) {
     nl->alpha = make_alpha_field(config);
     nl->points = bonds::make_nonlocal_points(m, config.nonlocal.quadrature, scale, nl->alpha, partial_volume);
     const auto& amax = nl->points.cell_alpha_max;
-    nl->graph =
-        bonds::find_cell_neighbors(m, nl->points.bond_reach(nl->kernel.horizon), [&](Index e, Index f) {
-          return amax[static_cast<std::size_t>(e)] > 0.0 || amax[static_cast<std::size_t>(f)] > 0.0;
-        });
+    // Boxes of the local and non-local points: the graph must hold every cell
+    // the bonds of a non-local point or the horizon integral of a local point
+    // (the morphed C) can reach.
+    std::vector<Vec3> reference;
+    for (const auto& q : fem::gauss_legendre(dim, config.nonlocal.quadrature)) reference.push_back(q.xi);
+    for (const auto& q : rule) reference.push_back(q.xi);
+    nl->graph = bonds::find_cell_neighbors(m, bonds::point_boxes(m, reference),
+                                           nl->points.bond_reach(nl->kernel.horizon), [&](Index e, Index f) {
+                                             return amax[static_cast<std::size_t>(e)] > 0.0 ||
+                                                    amax[static_cast<std::size_t>(f)] > 0.0;
+                                           });
     nl->morph = assembly::morph_stiffness(m, rule, nl->points, nl->graph, nl->kernel, nl->alpha, C0,
                                           config.nonlocal.coupling == casefile::Coupling::partition
                                               ? assembly::CouplingRule::partition

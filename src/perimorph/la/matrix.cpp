@@ -4,9 +4,51 @@
 
 #include <petscmat.h>
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <vector>
 
 namespace perimorph::la {
+
+namespace {
+
+bool is_seqaij(Mat m) {
+  PetscBool match = PETSC_FALSE;
+  PM_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(m), MATSEQAIJ, &match));
+  return match == PETSC_TRUE;
+}
+
+}  // namespace
+
+Matrix::Matrix(PetscMatHandle m) : m_(m), direct_(is_seqaij(m)) {}
+
+bool Matrix::acquire_view() {
+  if (view_held_) return true;
+  if (!direct_) return false;
+  PetscInt n = 0;
+  const PetscInt *ia = nullptr, *ja = nullptr;
+  PetscBool done = PETSC_FALSE;
+  PM_PETSC(MatGetRowIJ(m_, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+  if (!done) return false;
+  PetscScalar* v = nullptr;
+  PM_PETSC(MatSeqAIJGetArray(m_, &v));
+  view_ = {ia, ja, v, n};
+  view_held_ = true;
+  return true;
+}
+
+void Matrix::release_view() const {
+  if (!view_held_) return;
+  PetscScalar* v = view_.values;
+  PM_PETSC(MatSeqAIJRestoreArray(m_, &v));
+  PetscInt n = view_.n;
+  const PetscInt *ia = view_.ia, *ja = view_.ja;
+  PetscBool done = PETSC_FALSE;
+  PM_PETSC(MatRestoreRowIJ(m_, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+  view_ = {};
+  view_held_ = false;
+}
 
 Matrix::Matrix(const assembly::SparsityPattern& pattern) {
   const Index bs = pattern.block_size;
@@ -20,86 +62,158 @@ Matrix::Matrix(const assembly::SparsityPattern& pattern) {
   for (Index r = 0; r < nb; ++r)
     dnnz[static_cast<std::size_t>(r)] = static_cast<PetscInt>(pattern.row(r).size());
   PM_PETSC(MatXAIJSetPreallocation(m_, bs, dnnz.data(), onnz.data(), nullptr, nullptr));
-  PM_PETSC(MatSetOption(m_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
-  PM_PETSC(MatSetOption(m_, MAT_IGNORE_ZERO_ENTRIES, PETSC_FALSE));
-  // Insert explicit zeros over the whole pattern so the structure is fixed
+  // The whole pattern is stored (explicit zeros), so the structure is fixed
   // even where assembled values happen to be zero.
-  std::vector<PetscInt> cols;
-  std::vector<PetscScalar> zeros;
-  for (Index r = 0; r < nb; ++r) {
-    const auto row = pattern.row(r);
-    cols.clear();
-    for (Index c : row)
+  auto expanded_row = [&](Index r, std::vector<PetscInt>& cols) {
+    for (Index c : pattern.row(r))
       for (Index k = 0; k < bs; ++k) cols.push_back(c * bs + k);
-    zeros.assign(cols.size(), 0.0);
-    for (Index k = 0; k < bs; ++k) {
-      const PetscInt grow = r * bs + k;
-      PM_PETSC(MatSetValues(m_, 1, &grow, static_cast<PetscInt>(cols.size()), cols.data(), zeros.data(),
-                            INSERT_VALUES));
+  };
+  if (is_seqaij(m_)) {
+    // One process: the column indices of every row in one call (a copy),
+    // instead of MatSetValues' per-value insertion.
+    std::vector<PetscInt> ja;
+    ja.reserve(pattern.columns.size() * static_cast<std::size_t>(bs * bs));
+    std::vector<PetscInt> cols;
+    for (Index r = 0; r < nb; ++r) {
+      cols.clear();
+      expanded_row(r, cols);
+      for (Index k = 0; k < bs; ++k) ja.insert(ja.end(), cols.begin(), cols.end());
+    }
+    PM_PETSC(MatSeqAIJSetColumnIndices(m_, ja.data()));
+    finalize();
+    PM_PETSC(MatZeroEntries(m_));
+  } else {
+    std::vector<PetscInt> cols;
+    std::vector<PetscScalar> zeros;
+    for (Index r = 0; r < nb; ++r) {
+      cols.clear();
+      expanded_row(r, cols);
+      zeros.assign(cols.size(), 0.0);
+      for (Index k = 0; k < bs; ++k) {
+        const PetscInt grow = r * bs + k;
+        PM_PETSC(MatSetValues(m_, 1, &grow, static_cast<PetscInt>(cols.size()), cols.data(), zeros.data(),
+                              INSERT_VALUES));
+      }
     }
   }
+  PM_PETSC(MatSetOption(m_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PM_PETSC(MatSetOption(m_, MAT_IGNORE_ZERO_ENTRIES, PETSC_FALSE));
   finalize();
+  direct_ = is_seqaij(m_);
 }
 
 Matrix::~Matrix() {
-  if (m_) MatDestroy(&m_);
+  if (!m_) return;
+  try {
+    release_view();
+  } catch (...) {  // a destructor must not throw; the matrix is destroyed anyway
+  }
+  MatDestroy(&m_);
 }
 
-Matrix::Matrix(Matrix&& other) noexcept : m_(other.m_) {
+Matrix::Matrix(Matrix&& other) noexcept
+    : m_(other.m_), direct_(other.direct_), view_(other.view_), view_held_(other.view_held_) {
   other.m_ = nullptr;
+  other.view_held_ = false;
 }
 
 Matrix& Matrix::operator=(Matrix&& other) noexcept {
   if (this != &other) {
-    if (m_) MatDestroy(&m_);
+    if (m_) {
+      try {
+        release_view();
+      } catch (...) {
+      }
+      MatDestroy(&m_);
+    }
     m_ = other.m_;
+    direct_ = other.direct_;
+    view_ = other.view_;
+    view_held_ = other.view_held_;
     other.m_ = nullptr;
+    other.view_held_ = false;
   }
   return *this;
 }
 
 void Matrix::add(std::span<const Index> rows, std::span<const Index> cols, std::span<const double> values) {
-  PM_PETSC(MatSetValues(m_, static_cast<PetscInt>(rows.size()), rows.data(),
-                        static_cast<PetscInt>(cols.size()), cols.data(), values.data(), ADD_VALUES));
+  if (!acquire_view()) {
+    PM_PETSC(MatSetValues(m_, static_cast<PetscInt>(rows.size()), rows.data(),
+                          static_cast<PetscInt>(cols.size()), cols.data(), values.data(), ADD_VALUES));
+    return;
+  }
+  // Same semantics as MatSetValues(ADD_VALUES): negative indices skipped,
+  // values summed in row-major order, an entry outside the pattern an error.
+  const std::size_t nc = cols.size();
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const Index r = rows[i];
+    if (r < 0) continue;
+    PERIMORPH_ASSERT(r < view_.n, "matrix row out of range");
+    const Index* first = view_.ja + view_.ia[r];
+    const Index* last = view_.ja + view_.ia[r + 1];
+    const Index* at = nullptr;
+    const double* vrow = values.data() + i * nc;
+    for (std::size_t j = 0; j < nc; ++j) {
+      const Index c = cols[j];
+      if (c < 0) continue;
+      if (at != nullptr && at + 1 < last && at[1] == c)
+        ++at;  // the next column of a run (the components of a node)
+      else {
+        at = std::lower_bound(first, last, c);
+        if (at == last || *at != c)
+          throw Error(
+              fmt::format("matrix entry ({}, {}) is outside the preallocated sparsity pattern", r, c));
+      }
+      view_.values[at - view_.ja] += vrow[j];
+    }
+  }
 }
 
 void Matrix::zero_entries() {
+  release_view();
   PM_PETSC(MatZeroEntries(m_));
 }
 
 void Matrix::finalize() {
+  release_view();
   PM_PETSC(MatAssemblyBegin(m_, MAT_FINAL_ASSEMBLY));
   PM_PETSC(MatAssemblyEnd(m_, MAT_FINAL_ASSEMBLY));
 }
 
 Matrix Matrix::duplicate() const {
+  release_view();
   Mat copy = nullptr;
   PM_PETSC(MatDuplicate(m_, MAT_COPY_VALUES, &copy));
   return Matrix(copy);
 }
 
 void Matrix::mult(const Vector& x, Vector& y) const {
+  release_view();
   PM_PETSC(MatMult(m_, x.handle(), y.handle()));
 }
 
 void Matrix::eliminate_dirichlet(std::span<const Index> rows, const Vector& x, Vector& rhs, double diagonal) {
+  release_view();
   PM_PETSC(MatZeroRowsColumns(m_, static_cast<PetscInt>(rows.size()), rows.data(), diagonal, x.handle(),
                               rhs.handle()));
 }
 
 Index Matrix::rows() const {
+  release_view();
   PetscInt m = 0, n = 0;
   PM_PETSC(MatGetSize(m_, &m, &n));
   return m;
 }
 
 double Matrix::nonzeros() const {
+  release_view();
   MatInfo info;
   PM_PETSC(MatGetInfo(m_, MAT_GLOBAL_SUM, &info));
   return info.nz_used;
 }
 
 Eigen::MatrixXd Matrix::to_dense() const {
+  release_view();
   const Index n = rows();
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
   for (PetscInt r = 0; r < n; ++r) {
@@ -114,6 +228,7 @@ Eigen::MatrixXd Matrix::to_dense() const {
 }
 
 void Matrix::set_spd() {
+  release_view();
   PM_PETSC(MatSetOption(m_, MAT_SYMMETRIC, PETSC_TRUE));
   PM_PETSC(MatSetOption(m_, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
   PM_PETSC(MatSetOption(m_, MAT_SPD, PETSC_TRUE));

@@ -2,6 +2,13 @@
 // A PETSc AIJ matrix (RAII, move-only) created with exact preallocation from a
 // SparsityPattern; inserting outside the pattern is an error. It implements
 // assembly::MatrixInserter, so assembly code never sees PETSc.
+//
+// Insertion: on one process (MATSEQAIJ, the structure fixed at creation) add()
+// writes into PETSc's own CSR arrays (MatGetRowIJ / MatSeqAIJGetArray), one
+// search per run of consecutive columns instead of MatSetValues' per-value
+// path; the values are summed in the same order, so the matrix is bit-identical
+// to MatSetValues(ADD_VALUES). Any other operation releases the arrays first;
+// elsewhere add() is MatSetValues.
 
 #include "perimorph/assembly/inserter.hpp"
 #include "perimorph/assembly/sparsity.hpp"
@@ -47,11 +54,27 @@ class Matrix final : public assembly::MatrixInserter {
   /// Marks the matrix symmetric positive definite (after finalize).
   void set_spd();
 
-  PetscMatHandle handle() const { return m_; }
+  PetscMatHandle handle() const {
+    release_view();
+    return m_;
+  }
 
  private:
-  explicit Matrix(PetscMatHandle m) : m_(m) {}
+  explicit Matrix(PetscMatHandle m);
+  /// The CSR arrays held by add() between other operations.
+  struct CsrView {
+    const Index* ia = nullptr;
+    const Index* ja = nullptr;
+    double* values = nullptr;
+    Index n = 0;
+  };
+  bool acquire_view();
+  void release_view() const;
+
   PetscMatHandle m_ = nullptr;
+  bool direct_ = false;  ///< MATSEQAIJ with a fixed structure: add() may write the arrays
+  mutable CsrView view_;
+  mutable bool view_held_ = false;
 };
 
 }  // namespace perimorph::la
