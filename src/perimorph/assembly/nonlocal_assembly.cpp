@@ -200,7 +200,11 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
     }
     blocks.resize(tasks.size() * max_block);
     bonds.assign(tasks.size(), 0);
-#pragma omp parallel for schedule(dynamic, 4)
+    // No parallel region for a chunk served entirely by the cache: its barrier
+    // costs more than the loop when a core is busy elsewhere.
+    const auto to_compute =
+        std::count_if(tasks.begin(), tasks.end(), [](const PairTask& t) { return t.cached < 0; });
+#pragma omp parallel for schedule(dynamic, 4) if (to_compute > 1)
     for (std::size_t t = 0; t < tasks.size(); ++t)
       if (tasks[t].cached < 0) bonds[t] = compute(tasks[t].e, tasks[t].f, blocks.data() + t * max_block);
     for (std::size_t t = 0; t < tasks.size(); ++t) {
