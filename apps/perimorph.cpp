@@ -72,6 +72,11 @@ int info(const std::string& path) {
              nl.morph.morphing_cells, pure);
   fmt::print("bonds      {} non-local points per cell, {} interacting cell pairs\n", nl.points.per_cell,
              nl.graph.num_pairs());
+  if (nl.points.partial_volume())
+    fmt::print("edge       partial volume: bonds weighed near |xi| = delta, reach up to {:.6g}\n",
+               nl.points.bond_reach(nl.kernel.horizon));
+  else
+    fmt::print("edge       cut-off: a bond counts iff |xi| < delta\n");
   return 0;
 }
 

@@ -48,3 +48,9 @@ add_test(NAME cli_solver_divergence_is_reported
   COMMAND ${PM_EXE} run ${PM_EXAMPLE} -o ${PM_CLI_OUT}/diverged --quiet -pc_type jacobi -ksp_max_it 3)
 set_tests_properties(cli_solver_divergence_is_reported PROPERTIES
   PASS_REGULAR_EXPRESSION "solver error: increment 1/4 .*diverged.*DIVERGED_ITS")
+
+# `info` on the B1 example: the calibrated scale of c = 3E/δ³ (E = 1, δ = 0.5,
+# cross-section 1: ĉ = 24) and the horizon-edge rule of the case.
+add_test(NAME cli_info_nonlocal COMMAND ${PM_EXE} info ${PROJECT_SOURCE_DIR}/examples/b1_ghost_forces_1d/case.toml)
+set_tests_properties(cli_info_nonlocal PROPERTIES
+  PASS_REGULAR_EXPRESSION "c_hat = 2\\.400000e\\+01.*edge +partial volume")
