@@ -2,6 +2,7 @@
 
 #include "perimorph/core/error.hpp"
 #include "perimorph/io/atomic_file.hpp"
+#include "perimorph/io/xml_escape.hpp"
 
 #include <fmt/format.h>
 
@@ -13,35 +14,7 @@
 
 namespace perimorph::io {
 
-namespace {
-
-std::string xml_escape(std::string_view s) {
-  std::string r;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        r += "&amp;";
-        break;
-      case '<':
-        r += "&lt;";
-        break;
-      case '>':
-        r += "&gt;";
-        break;
-      case '"':
-        r += "&quot;";
-        break;
-      case '\'':
-        r += "&apos;";
-        break;
-      default:
-        r.push_back(c);
-    }
-  }
-  return r;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 PvdCollection::PvdCollection(std::string path) : path_(std::move(path)) {
   rewrite();

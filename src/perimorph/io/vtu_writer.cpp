@@ -2,6 +2,7 @@
 
 #include "perimorph/core/error.hpp"
 #include "perimorph/io/atomic_file.hpp"
+#include "perimorph/io/xml_escape.hpp"
 
 #include <fmt/format.h>
 
@@ -58,32 +59,6 @@ class Base64Encoder {
   std::array<std::uint8_t, 3> group_{};
   std::size_t pending_ = 0;
 };
-
-std::string xml_escape(std::string_view s) {
-  std::string r;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        r += "&amp;";
-        break;
-      case '<':
-        r += "&lt;";
-        break;
-      case '>':
-        r += "&gt;";
-        break;
-      case '"':
-        r += "&quot;";
-        break;
-      case '\'':
-        r += "&apos;";
-        break;
-      default:
-        r.push_back(c);
-    }
-  }
-  return r;
-}
 
 template <class T>
 constexpr std::string_view vtk_type_name() {
