@@ -14,7 +14,6 @@
 
 namespace perimorph::io {
 
-
 PvdCollection::PvdCollection(std::string path) : path_(std::move(path)) {
   rewrite();
 }
