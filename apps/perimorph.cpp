@@ -14,6 +14,7 @@
 #include "perimorph/la/petsc_session.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -38,6 +39,44 @@ std::unique_ptr<perimorph::la::PetscSession> quiet_petsc() {
   return std::make_unique<perimorph::la::PetscSession>();
 }
 
+/// The anisotropic micromodulus: its coefficients, the range of Y and how
+/// closely c_r Y reproduces C0 (THEORY §2.1, eq. 2.64; exact up to round-off).
+void print_angular(const perimorph::driver::NonlocalModel& nl, int dim) {
+  namespace pd = perimorph::peridynamics;
+  const auto& Y = nl.kernel.angular;
+  const int n = dim == 2 ? 5 : Y.kind == pd::AngularKind::transversely_isotropic ? 3 : 6;
+  static const char* names3[] = {"a00", "a20", "a22", "a40", "a42", "a44"};
+  static const char* namesT[] = {"a0", "a2", "", "a4"};
+  static const char* names2[] = {"a0", "a2", "b2", "a4", "b4"};
+  std::string coeffs;
+  for (int i = 0, shown = 0; shown < n; ++i) {
+    const char* name = dim == 2 ? names2[i] : n == 3 ? namesT[i] : names3[i];
+    if (*name == '\0') continue;
+    coeffs += fmt::format("{}{} = {:.6e}", shown ? ", " : "", name, Y.a[static_cast<std::size_t>(i)]);
+    ++shown;
+  }
+  fmt::print(
+      "kernel     c(xi) = c_hat * phi(r) * Y(xi/r), c_hat = {:.6e}{}; Y {}: {}\n", nl.calibration.scale,
+      nl.discrete_factor != 1.0 ? fmt::format(" (discrete calibration factor {:.8f})", nl.discrete_factor)
+                                : "",
+      pd::to_string(Y.kind), coeffs);
+  const auto [lo, hi] = pd::angular_range(Y, dim);
+  fmt::print("angular    Y ranges over [{:.6g}, {:.6g}]{}\n", lo, hi,
+             lo < 0 ? " -- negative in some directions: those bonds push; the non-local stiffness may be "
+                      "indefinite"
+                    : "");
+  const double moment = nl.calibration.scale * nl.kernel.shape_moment(dim == 2 ? 3 : 4);
+  const Eigen::MatrixXd C = pd::angular_bulk_tensor(Y, dim, moment);  // in mesh axes
+  const Eigen::MatrixXd& C0 = nl.material.C0;
+  const Eigen::VectorXd diag = C0.diagonal();
+  fmt::print(
+      "equivalent C0 (mesh axes, Voigt) diagonal [{:.6e}], C1122 = {:.6e}; bulk tensor of c: max |C - C0| / "
+      "max |C0| = {:.2e}\n",
+      fmt::join(std::vector<double>(diag.data(), diag.data() + diag.size()), ", "), C0(0, 1),
+      (C - C0).cwiseAbs().maxCoeff() / C0.cwiseAbs().maxCoeff());
+  fmt::print("fracture   G_c depends on the crack plane for an anisotropic kernel (not computed)\n");
+}
+
 int info(const std::string& path) {
   const auto config = perimorph::casefile::parse_case_file(path);
   auto petsc = quiet_petsc();
@@ -54,15 +93,20 @@ int info(const std::string& path) {
   const auto& cal = nl.calibration;
   fmt::print("kernel     {}, horizon delta = {}, length l = {}\n",
              perimorph::peridynamics::to_string(nl.kernel.shape), nl.kernel.horizon, nl.kernel.length);
-  fmt::print("scale      c_hat = {:.6e}  (micromodulus c(r) = c_hat * phi(r)){}\n", cal.scale,
-             nl.discrete_factor != 1.0
-                 ? fmt::format("; discrete calibration factor {:.8f}", nl.discrete_factor)
-                 : "");
-  if (model.dim() > 1)
-    fmt::print("equivalent lambda = mu = {:.6e}, E = {:.6e}, nu = {:.6f}\n", cal.lame, cal.E, cal.nu);
-  else
-    fmt::print("equivalent E = {:.6e}\n", cal.E);
-  fmt::print("fracture   G_c = {:.6e} * s_crit^2  (bulk closed form, THEORY §5)\n", cal.gc_factor);
+  for (const auto& note : nl.material.notes) fmt::print("material   {}\n", note);
+  if (nl.kernel.angular.kind == perimorph::peridynamics::AngularKind::isotropic) {
+    fmt::print("scale      c_hat = {:.6e}  (micromodulus c(r) = c_hat * phi(r)){}\n", cal.scale,
+               nl.discrete_factor != 1.0
+                   ? fmt::format("; discrete calibration factor {:.8f}", nl.discrete_factor)
+                   : "");
+    if (model.dim() > 1)
+      fmt::print("equivalent lambda = mu = {:.6e}, E = {:.6e}, nu = {:.6f}\n", cal.lame, cal.E, cal.nu);
+    else
+      fmt::print("equivalent E = {:.6e}\n", cal.E);
+    fmt::print("fracture   G_c = {:.6e} * s_crit^2  (bulk closed form, THEORY §5)\n", cal.gc_factor);
+  } else {
+    print_angular(nl, model.dim());
+  }
   perimorph::Index positive = 0, pure = 0;
   for (perimorph::Index c = 0; c < model.mesh.num_cells(); ++c) {
     positive += nl.points.cell_alpha_max[static_cast<std::size_t>(c)] > 0 ? 1 : 0;

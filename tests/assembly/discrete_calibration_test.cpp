@@ -20,7 +20,7 @@ TEST(AssemblyDiscreteCalibration, FactorMakesTheLatticeBulkTensorMatchC0) {
     layout.spacing = Vec3::Constant(0.125);
     peridynamics::Micromodulus k{
         dim == 1 ? peridynamics::KernelShape::constant : peridynamics::KernelShape::exponential, 0.5, 0.1,
-        1.0};
+        1.0, {}};
     const auto cal = peridynamics::calibrate_isotropic(k, dim, PlaneMode::strain, 1.0);
     k.scale = cal.scale;
     Eigen::MatrixXd C0 = Eigen::MatrixXd::Zero(fem::voigt_size(dim), fem::voigt_size(dim));

@@ -115,7 +115,7 @@ double bulk_error(int dim, double h, int n, bool partial) {
   mesh::StructuredLayout layout;
   layout.spacing = Vec3::Constant(h);
   const double delta = 1.0;
-  peridynamics::Micromodulus k{peridynamics::KernelShape::exponential, delta, delta / 5.0, 1.0};
+  peridynamics::Micromodulus k{peridynamics::KernelShape::exponential, delta, delta / 5.0, 1.0, {}};
   k.scale = peridynamics::calibrate_isotropic(k, dim, PlaneMode::strain, 1.0).scale;
   const Eigen::MatrixXd C0 = fem::reduce_stiffness(fem::stiffness_voigt(fem::IsotropicElasticity{1.0, 0.25}),
                                                    dim, PlaneMode::strain);

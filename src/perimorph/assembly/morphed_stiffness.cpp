@@ -70,7 +70,7 @@ Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const
       if (!mesh.cuts.empty() && peridynamics::bond_cut(xg, points.x[k], mesh.cuts)) continue;
       double cb = 0.0;
       if (!partial)
-        cb = kernel(std::sqrt(r2));
+        cb = kernel.bond(xi, std::sqrt(r2));
       else if (dim == 1)
         cb = peridynamics::bond_micromodulus<1>(kernel, xi, r2, &half_g, &points.half[k]);
       else if (dim == 2)

@@ -111,11 +111,11 @@ Model build_model(const casefile::CaseConfig& config) {
 
   std::optional<NonlocalModel> nl;
   if (config.nonlocal.enabled) {
-    const casefile::MaterialSpec mat = calibration_material(config);
     nl.emplace();
+    nl->material = nonlocal_material(config);
     nl->kernel = make_kernel(config.nonlocal);
-    nl->calibration = peridynamics::calibrate_isotropic(nl->kernel, dim, config.model.plane, mat.E);
-    const Eigen::MatrixXd C0 = fem::reduce_stiffness(material_stiffness(mat), dim, config.model.plane);
+    nl->calibration = calibrate_kernel(nl->kernel, nl->material, dim, config.model.plane);
+    const Eigen::MatrixXd& C0 = nl->material.C0;
     const bool partial_volume = config.nonlocal.horizon_edge == casefile::HorizonEdge::partial_volume;
     if (config.nonlocal.calibration == casefile::CalibrationRule::discrete) {
       if (!m.structure)

@@ -61,27 +61,4 @@ peridynamics::Micromodulus make_kernel(const casefile::NonlocalSpec& spec) {
   return k;
 }
 
-casefile::MaterialSpec calibration_material(const casefile::CaseConfig& config) {
-  if (config.materials.size() != 1)
-    throw InputError(
-        fmt::format("{}: a case with [nonlocal] needs exactly one material (the micromodulus is "
-                    "calibrated from it); this case has {}",
-                    config.nonlocal.where.describe(), config.materials.size()));
-  casefile::MaterialSpec m = config.materials.front();
-  if (m.kind != casefile::MaterialKind::isotropic)
-    throw InputError(
-        fmt::format("{}: material '{}': the non-local model is calibrated from an isotropic material "
-                    "(anisotropic micromoduli are not available yet)",
-                    m.where.describe(), m.name));
-  const int dim = config.dim();
-  if (std::isnan(m.nu)) {
-    m.nu = dim == 1 ? 0.0 : peridynamics::cauchy_poisson_ratio(dim, config.model.plane);
-  } else if (auto problem = peridynamics::cauchy_problem(dim, config.model.plane, m.nu); !problem.empty()) {
-    throw InputError(fmt::format("{}: material '{}': {}",
-                                 m.nu_where.line > 0 ? m.nu_where.describe() : m.where.describe(), m.name,
-                                 problem));
-  }
-  return m;
-}
-
 }  // namespace perimorph::driver

@@ -8,11 +8,13 @@
 #include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/bonds/nonlocal_points.hpp"
 #include "perimorph/casefile/case_config.hpp"
+#include "perimorph/driver/nonlocal_material.hpp"
 #include "perimorph/peridynamics/micromodulus.hpp"
 
 namespace perimorph::driver {
 
 struct NonlocalModel {
+  NonlocalMaterial material;  ///< the material, resolved for central forces
   peridynamics::Micromodulus kernel;
   peridynamics::Calibration calibration;  ///< scale includes discrete_factor
   double discrete_factor = 1.0;           ///< discrete calibration factor (1: continuum calibration)
@@ -28,9 +30,5 @@ alpha::AlphaField make_alpha_field(const casefile::CaseConfig& config);
 /// The micromodulus of a case (shape, δ, l; scale not yet calibrated).
 peridynamics::Micromodulus make_kernel(const casefile::NonlocalSpec& spec);
 
-/// The material the non-local model is calibrated from: the case must have a
-/// single isotropic material; its ν is checked against (or, if not given,
-/// set to) the central-force value. Throws InputError naming the key.
-casefile::MaterialSpec calibration_material(const casefile::CaseConfig& config);
 
 }  // namespace perimorph::driver

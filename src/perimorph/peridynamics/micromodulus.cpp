@@ -104,4 +104,18 @@ Calibration calibrate_isotropic(const Micromodulus& kernel, int dim, PlaneMode m
   return cal;
 }
 
+AngularPart calibrate_angular(const Micromodulus& kernel, int dim, const Eigen::MatrixXd& C, const Mat3& axes,
+                              AngularKind kind) {
+  PERIMORPH_ASSERT(dim == 2 || dim == 3, "anisotropic micromoduli exist in 2D and 3D");
+  if (dim == 2) {
+    PERIMORPH_ASSERT(C.rows() == 3 && C.cols() == 3, "calibrate_angular: 2D needs a 3x3 tensor");
+    return planar_angular(C, kernel.shape_moment(3));
+  }
+  PERIMORPH_ASSERT(C.rows() == 6 && C.cols() == 6, "calibrate_angular: 3D needs a 6x6 tensor");
+  const Voigt6 C6 = C;
+  if (kind == AngularKind::transversely_isotropic)
+    return transversely_isotropic_angular(C6, kernel.shape_moment(4), axes);
+  return orthotropic_angular(C6, kernel.shape_moment(4), axes);
+}
+
 }  // namespace perimorph::peridynamics

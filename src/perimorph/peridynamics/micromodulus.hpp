@@ -4,6 +4,7 @@
 // are cut off at |ξ| = δ.
 
 #include "perimorph/core/types.hpp"
+#include "perimorph/peridynamics/anisotropy.hpp"
 
 #include <string>
 
@@ -14,16 +15,21 @@ enum class KernelShape { constant, conical, exponential, gaussian };
 const char* to_string(KernelShape s);
 
 /// c(r) = scale · φ(r) for r < δ, 0 otherwise, with φ = 1, 1 − r/δ,
-/// r² exp(−r/l), r² exp(−r²/l²) for constant, conical, exponential, gaussian.
+/// r² exp(−r/l), r² exp(−r²/l²) for constant, conical, exponential, gaussian;
+/// a bond ξ acts with c(|ξ|) · Y(ξ/|ξ|), Y the angular part (THEORY §2.1;
+/// Y ≡ 1 for an isotropic kernel).
 struct Micromodulus {
   KernelShape shape = KernelShape::constant;
   double horizon = 1.0;  ///< δ
   double length = 1.0;   ///< l (exponential and gaussian only)
   double scale = 1.0;    ///< ĉ
+  AngularPart angular;   ///< Y (anisotropy.hpp)
 
   /// φ(r) (without the scale); 0 for r ≥ δ.
   double shape_value(double r) const;
   double operator()(double r) const { return scale * shape_value(r); }
+  /// c(ξ) = c(r) Y(ξ/r) for a bond ξ of length r > 0.
+  double bond(const Vec3& xi, double r) const { return (*this)(r)*angular(xi, r); }
   /// ∫₀^δ φ(r) r^k dr (without the scale), exact to round-off.
   double shape_moment(int k) const;
   double moment(int k) const { return scale * shape_moment(k); }
@@ -52,5 +58,13 @@ std::string cauchy_problem(int dim, PlaneMode mode, double nu);
 /// with Young's modulus E (THEORY §2), with κ for G_c = κ s_crit² (THEORY §5).
 /// `kernel.scale` is ignored.
 Calibration calibrate_isotropic(const Micromodulus& kernel, int dim, PlaneMode mode, double E);
+
+/// The angular part that makes c_r · Y, c_r = kernel.shape_value (scale 1),
+/// equal to the central-force stiffness C (THEORY §2.1): in 3D C is the 6×6
+/// Voigt tensor in material axes `axes` and `kind` is orthotropic or
+/// transversely_isotropic; in 2D C is the 3×3 tensor (xx, yy, xy) in mesh axes
+/// and the result is planar. The caller has checked the Cauchy relations.
+AngularPart calibrate_angular(const Micromodulus& kernel, int dim, const Eigen::MatrixXd& C, const Mat3& axes,
+                              AngularKind kind);
 
 }  // namespace perimorph::peridynamics

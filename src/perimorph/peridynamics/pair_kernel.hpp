@@ -48,17 +48,19 @@ inline double horizon_cutoff_squared(double delta) {
 
 /// The micromodulus a bond ξ (|ξ|² = r2 > 0) acts with, 0 if there is no
 /// bond: c(|ξ|) inside the open horizon with the plain cut-off (half_g null),
-/// φ c(r_eff) (r_eff/|ξ|)² with the partial-volume rule (horizon_edge.hpp).
+/// φ c(r_eff) (r_eff/|ξ|)² with the partial-volume rule (horizon_edge.hpp),
+/// times the angular factor Y(ξ/|ξ|) (anisotropy.hpp) either way.
 /// Either way the bond's stiffness is W ᾱ c_bond e eᵀ.
 template <int D>
 double bond_micromodulus(const Micromodulus& c, const Vec3& xi, double r2, const Vec3* half_g,
                          const Vec3* half_h) {
-  if (half_g == nullptr) return r2 < horizon_cutoff_squared(c.horizon) ? c(std::sqrt(r2)) : 0.0;
   const double r = std::sqrt(r2);
+  if (half_g == nullptr) return r2 < horizon_cutoff_squared(c.horizon) ? c.bond(xi, r) : 0.0;
   const EdgeWeight w = edge_weight<D>(xi, r, *half_g, *half_h, c.horizon);
   if (w.fraction == 0.0) return 0.0;
-  if (w.fraction == 1.0 && w.r_eff == r) return c(r);
-  return w.fraction * c(w.r_eff) * (w.r_eff * w.r_eff) / r2;
+  const double Y = c.angular(xi, r);
+  if (w.fraction == 1.0 && w.r_eff == r) return c(r) * Y;
+  return w.fraction * c(w.r_eff) * (w.r_eff * w.r_eff) / r2 * Y;
 }
 
 /// True if the bond x_g–x_h crosses one of the cuts (a pre-crack removes it).
@@ -106,7 +108,8 @@ std::size_t pair_stiffness(const CellPoints& E, const CellPoints& F, bool same_c
       if (!cuts.empty() && bond_cut(xg, F.x[h], cuts)) continue;
       const double abar = unit_alpha ? 1.0 : 0.5 * (E.alpha[g] + F.alpha[h]);
       if (abar == 0.0) continue;
-      const double cb = partial ? bond_micromodulus<D>(c, xi, r2, E.half + g, F.half + h) : c(std::sqrt(r2));
+      const double cb =
+          partial ? bond_micromodulus<D>(c, xi, r2, E.half + g, F.half + h) : c.bond(xi, std::sqrt(r2));
       if (cb == 0.0) continue;
       const double k = E.weight[g] * F.weight[h] * abar * cb / r2;  // G = ξξᵀ/r²
       ++bonds;
