@@ -75,14 +75,31 @@ struct ModelSpec {
   int local_quadrature = 2;             ///< Gauss points per direction for the local stiffness
 };
 
-enum class MaterialKind { isotropic, orthotropic };
+enum class MaterialKind { isotropic, orthotropic, transversely_isotropic };
+
+/// How a material that central forces cannot represent is treated ([nonlocal]
+/// only): exact = a given value inconsistent with the Cauchy relations is an
+/// error; nearest = the stiffness is replaced by its nearest central-force
+/// tensor (the physics layer applies both).
+enum class CauchyRule { exact, nearest };
 
 /// [[material]]: assigned to a region ("all" = every cell not claimed by a
-/// later material). Orthotropic: engineering constants in material axes; the
-/// axes are the columns of `axes` (from `rotation`, see docs).
-/// Isotropic `nu`: with [nonlocal] it may be left out and is then NaN (the
-/// physics layer takes the central-force value, 1/4 or 1/3, and checks a
+/// later material). Parsed by parse_material.cpp.
+///
+/// Isotropic: E, nu. `nu`: with [nonlocal] it may be left out and is then NaN
+/// (the physics layer takes the central-force value, 1/4 or 1/3, and checks a
 /// given one against it); a given nu satisfies -1 < nu < 0.5.
+///
+/// Orthotropic (kind orthotropic) and transversely isotropic (kind
+/// transversely_isotropic, axis e3) in material axes; the axes are the columns
+/// of `axes` (from `rotation`, see docs). Orthotropic input is either
+/// engineering constants (E1 ... G23; by_stiffness false) or stiffness
+/// components (by_stiffness true; `stiffness` holds them). Transversely
+/// isotropic input (E_in, E_axis, nu_axial, nu_in, G_axial) fills the
+/// engineering fields: E1 = E2 = E_in, E3 = E_axis, nu12 = nu_in, nu13 = nu23
+/// = nu_axial, G12 = E_in / (2 (1 + nu_in)), G13 = G23 = G_axial. Convention
+/// nuij / Ei = nuji / Ej. A given compliance (engineering) or stiffness normal
+/// block is positive definite and given moduli are positive.
 struct MaterialSpec {
   std::string name;
   std::string region = "all";
@@ -91,7 +108,29 @@ struct MaterialSpec {
   /// Isotropic: where `nu` is (key 'material[k].nu'), for messages about it;
   /// if nu was left out, the material's header with that key.
   SourceLocation nu_where;
+  /// Engineering constants. G12, G13, G23 are NaN when left out (only allowed
+  /// with [nonlocal]); transversely isotropic: nu12 (= nu_in) and G12 are NaN
+  /// when nu_in is left out (only allowed with [nonlocal]). by_stiffness: E1,
+  /// E2, E3, nu12, nu13, nu23 are derived from the inverse of the normal block
+  /// of `stiffness`, and G23 = C2323, G13 = C1313, G12 = C1212 (NaN if left out).
   double E1 = 0.0, E2 = 0.0, E3 = 0.0, nu12 = 0.0, nu13 = 0.0, nu23 = 0.0, G12 = 0.0, G13 = 0.0, G23 = 0.0;
+  /// Orthotropic given by its stiffness components in material axes instead of engineering constants.
+  bool by_stiffness = false;
+  /// by_stiffness: Voigt 6x6 in material axes (order xx, yy, zz, yz, xz, xy): C(0,0)=C1111, C(1,1)=C2222,
+  /// C(2,2)=C3333, C(0,1)=C(1,0)=C1122, C(0,2)=C(2,0)=C1133, C(1,2)=C(2,1)=C2233, C(3,3)=C2323,
+  /// C(4,4)=C1313, C(5,5)=C1212, all other entries 0. A shear entry left out (only allowed with
+  /// [nonlocal]) is NaN. Zero unless by_stiffness.
+  Voigt6 stiffness = Voigt6::Zero();
+  /// Where each shear value came from, for messages: index 0 = G23 or C2323 (transversely isotropic:
+  /// G_axial), 1 = G13 or C1313 (G_axial), 2 = G12 or C1212 (nu_in when given, else the material
+  /// header). Left out: the material's header with that key name ('material[k].G12'). Isotropic:
+  /// unset.
+  /// (The explicit initializer keeps GCC 12's -Wrestrict false positive on std::string assignments
+  /// near a MaterialSpec copy quiet.)
+  std::array<SourceLocation, 3> shear_where = {SourceLocation{}, SourceLocation{}, SourceLocation{}};
+  CauchyRule cauchy = CauchyRule::exact;
+  /// The `cauchy` key; when absent, the material's header with that key name ('material[k].cauchy').
+  SourceLocation cauchy_where;
   Mat3 axes = Mat3::Identity();
   SourceLocation where;
 };

@@ -6,9 +6,9 @@
 
 #include "perimorph/casefile/parse_case.hpp"
 
+#include "perimorph/casefile/parse_material.hpp"
 #include "perimorph/casefile/parse_nonlocal.hpp"
 #include "perimorph/casefile/parse_sets.hpp"
-#include "perimorph/casefile/suggest.hpp"
 #include "perimorph/casefile/toml_reader.hpp"
 #include "perimorph/core/error.hpp"
 
@@ -218,180 +218,6 @@ void read_model(const Table& root, CaseConfig& c) {
   if (auto v = t->get("local_quadrature")) c.model.local_quadrature = v->integer(1, 10);
 }
 
-// ------------------------------------------------------------ [[material]]
-
-const std::vector<std::string> kIsotropicKeys{"E", "nu"};
-const std::vector<std::string> kOrthotropicKeys{"E1",   "E2",  "E3",  "nu12", "nu13",
-                                                "nu23", "G12", "G13", "G23"};
-
-/// `nu` is optional in non-local cases: NaN when absent (the physics layer
-/// then takes the central-force value and checks a given one).
-void read_isotropic(const Table& t, MaterialSpec& m, bool nonlocal) {
-  const std::string needs =
-      nonlocal ? "an isotropic material needs Young's modulus E (and optionally Poisson's ratio nu)"
-               : "an isotropic material needs Young's modulus E and Poisson's ratio nu (nu may be left out "
-                 "only in non-local cases, with [nonlocal])";
-  m.E = positive(t.require("E", needs), "Young's modulus");
-  m.nu_where = t.where();
-  m.nu_where.key = t.key_path("nu");
-  const std::optional<Value> given = nonlocal ? t.get("nu") : std::optional<Value>(t.require("nu", needs));
-  if (!given) {
-    m.nu = std::numeric_limits<double>::quiet_NaN();
-    return;
-  }
-  const Value& nu = *given;
-  m.nu_where = nu.where();
-  m.nu = nu.number();
-  if (m.nu >= 0.5)
-    nu.fail(
-        fmt::format("nu = {} is out of range: need -1 < nu < 0.5; a Poisson ratio of 0.5 or more makes an "
-                    "isotropic material incompressible (0.5) or unstable (above 0.5)",
-                    m.nu));
-  if (m.nu <= -1.0)
-    nu.fail(
-        fmt::format("nu = {} is out of range: need -1 < nu < 0.5; a Poisson ratio of -1 or less makes the "
-                    "shear modulus E / (2 (1 + nu)) zero or negative, an unstable material",
-                    m.nu));
-}
-
-/// Material axes from `rotation` (rows e1, e2, e3 in mesh coordinates):
-/// checked to be a proper rotation within 1e-6, then made exactly orthonormal.
-Mat3 read_rotation(const Value& v, int dim) {
-  Mat3 r = v.matrix(3, "(rows = the material axes e1, e2, e3 in mesh coordinates)");
-  const std::vector<Value> rows = v.elements();
-  for (int i = 0; i < 3; ++i)
-    if (std::abs(r.row(i).norm() - 1.0) > 1e-6)
-      rows[static_cast<std::size_t>(i)].fail(
-          fmt::format("row {} (material axis e{}) has length {:.7g}; every row must be a unit vector", i + 1,
-                      i + 1, r.row(i).norm()));
-  for (int i = 0; i < 3; ++i)
-    for (int j = i + 1; j < 3; ++j)
-      if (std::abs(r.row(i).dot(r.row(j))) > 1e-6)
-        v.fail(
-            fmt::format("rows {} and {} (axes e{} and e{}) are not orthogonal: their dot product is {:.3g}",
-                        i + 1, j + 1, i + 1, j + 1, r.row(i).dot(r.row(j))));
-  if (r.determinant() < 0)
-    v.fail("is a reflection (determinant -1); the axes must be right-handed (e3 = e1 x e2): reverse one row");
-  if (dim == 2 && (r.col(2).cwiseAbs().maxCoeff() < 1.0 - 1e-6))
-    v.fail(
-        "in 2D one material axis must lie along z (a rotation about z, axes possibly permuted); otherwise "
-        "the "
-        "in-plane problem couples to out-of-plane shear");
-  const Eigen::JacobiSVD<Mat3> svd(r, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  r = svd.matrixU() * svd.matrixV().transpose();
-  return r.transpose();  // columns = axes
-}
-
-void read_orthotropic(const Table& t, MaterialSpec& m, int dim) {
-  const std::string all = "an orthotropic material needs E1, E2, E3, nu12, nu13, nu23, G12, G13, G23";
-  double* const targets[9] = {&m.E1, &m.E2, &m.E3, &m.nu12, &m.nu13, &m.nu23, &m.G12, &m.G13, &m.G23};
-  for (std::size_t k = 0; k < 9; ++k) {
-    const Value v = t.require(kOrthotropicKeys[k], all);
-    const bool is_nu = kOrthotropicKeys[k].starts_with("nu");
-    *targets[k] = is_nu
-                      ? v.number()
-                      : positive(v, kOrthotropicKeys[k][0] == 'E' ? "a Young's modulus" : "a shear modulus");
-  }
-  // Compliance S (normal block) positive definite, by Sylvester's criterion:
-  // each pair (i, j) needs nu_ij^2 < E_i / E_j, and det S > 0.
-  const double E[3] = {m.E1, m.E2, m.E3};
-  const struct {
-    int i, j;
-    double nu;
-    const char* key;
-  } pairs[3] = {{0, 1, m.nu12, "nu12"}, {0, 2, m.nu13, "nu13"}, {1, 2, m.nu23, "nu23"}};
-  for (const auto& p : pairs)
-    if (!(p.nu * p.nu < E[p.i] / E[p.j]))
-      t.get(p.key)->fail(
-          fmt::format("{} = {} needs |{}| < sqrt(E{} / E{}) = {:.4g} for a positive-definite compliance (a "
-                      "stable material)",
-                      p.key, p.nu, p.key, p.i + 1, p.j + 1, std::sqrt(E[p.i] / E[p.j])));
-  const double nu21 = m.nu12 * m.E2 / m.E1, nu31 = m.nu13 * m.E3 / m.E1, nu32 = m.nu23 * m.E3 / m.E2;
-  const double det = 1 - m.nu12 * nu21 - m.nu23 * nu32 - m.nu13 * nu31 - 2 * nu21 * nu32 * m.nu13;
-  if (!(det > 0))
-    t.fail(fmt::format(
-        "the Poisson ratios nu12 = {}, nu13 = {}, nu23 = {} make the compliance indefinite (an "
-        "unstable material): 1 - nu12 nu21 - nu23 nu32 - nu13 nu31 - 2 nu21 nu32 nu13 = {:.4g} must be "
-        "positive",
-        m.nu12, m.nu13, m.nu23, det));
-  if (auto v = t.get("rotation")) m.axes = read_rotation(*v, dim);
-}
-
-MaterialSpec read_material(const Table& t, const CaseConfig& c) {
-  MaterialSpec m;
-  m.where = t.where();
-  if (auto v = t.get("type")) {
-    const std::string type = v->string();
-    if (type == "orthotropic")
-      m.kind = MaterialKind::orthotropic;
-    else if (type != "isotropic")
-      v->fail(fmt::format(
-          "unknown material type {:?}; allowed: \"isotropic\" (E, nu) or \"orthotropic\" (E1, E2, "
-          "E3, nu12, nu13, nu23, G12, G13, G23, rotation)",
-          type));
-  }
-  const bool iso = m.kind == MaterialKind::isotropic;
-  std::vector<std::string> allowed{"name", "region", "type"};
-  std::vector<std::pair<std::string, std::string>> hints;
-  for (const std::string& k : kIsotropicKeys) {
-    if (iso)
-      allowed.push_back(k);
-    else
-      hints.emplace_back(k, "an orthotropic material takes E1, E2, E3, nu12, nu13, nu23, G12, G13, G23");
-  }
-  for (const std::string& k : kOrthotropicKeys) {
-    if (!iso)
-      allowed.push_back(k);
-    else
-      hints.emplace_back(
-          k, "it belongs to orthotropic materials; set type = \"orthotropic\" (this one is isotropic)");
-  }
-  if (!iso)
-    allowed.emplace_back("rotation");
-  else
-    hints.emplace_back("rotation", "only orthotropic materials have axes; set type = \"orthotropic\"");
-  t.check_keys(allowed, hints);
-
-  m.name = t.require("name", "every material needs a name, e.g. name = \"steel\"").name();
-  if (auto v = t.get("region")) {
-    m.region = v->name();
-    std::vector<std::string> known{"all"};
-    for (const RegionSpec& r : c.regions) known.push_back(r.name);
-    if (std::find(known.begin(), known.end(), m.region) == known.end()) {
-      const std::string close = closest_match(m.region, known);
-      v->fail(fmt::format("region {:?} is not declared{}; known regions: {}", m.region,
-                          close.empty() ? "" : fmt::format(" (did you mean {:?}?)", close),
-                          fmt::join(known, ", ")));
-    }
-  }
-  if (iso)
-    read_isotropic(t, m, c.nonlocal.enabled);
-  else
-    read_orthotropic(t, m, c.dim());
-  return m;
-}
-
-void read_materials(const Table& root, CaseConfig& c) {
-  const std::vector<Table> tables = root.tables("material");
-  if (tables.empty())
-    root.fail(
-        "no [[material]] given; at least one is required, e.g. [[material]] with name = \"steel\", "
-        "E = 210000, nu = 0.3");
-  for (const Table& t : tables) {
-    MaterialSpec m = read_material(t, c);
-    for (const MaterialSpec& other : c.materials) {
-      if (other.name == m.name)
-        t.get("name")->fail(fmt::format("duplicate material name {:?}: already used by {} (line {})", m.name,
-                                        other.where.key, other.where.line));
-      if (other.region == m.region)
-        t.fail(
-            fmt::format("region {:?} already has material {:?} ({}, line {}); each region takes one material",
-                        m.region, other.name, other.where.key, other.where.line));
-    }
-    c.materials.push_back(std::move(m));
-  }
-}
-
 // ------------------------------------------------------------ boundary conditions
 
 DirichletSpec read_dirichlet(const Table& t, int dim) {
@@ -569,8 +395,8 @@ CaseConfig parse_case_string(std::string_view toml_text, const std::string& pret
   read_regions(root, c);
   detail::read_node_sets(root, c);
   read_model(root, c);
-  c.nonlocal.enabled = root.has("nonlocal");  // makes an isotropic nu optional
-  read_materials(root, c);
+  c.nonlocal.enabled = root.has("nonlocal");  // makes central-force values optional, allows `cauchy`
+  detail::read_materials(root, c);
   detail::read_nonlocal(root, c);
   detail::read_alpha(root, c);
   read_boundary(root, c);

@@ -1,6 +1,6 @@
 #pragma once
-// Internal to casefile/ (only parse_case.cpp, parse_nonlocal.cpp and
-// parse_sets.cpp include it; toml++ is a private dependency of the library):
+// Internal to casefile/ (only parse_case.cpp, parse_material.cpp,
+// parse_nonlocal.cpp and parse_sets.cpp include it; toml++ is a private dependency of the library):
 // typed reads of TOML values that know where they came from. Every failure throws InputError with the message
 //   FILE:LINE:COL: key 'PATH': what is wrong, the value given, what is allowed
 // where PATH is the dotted key path with 1-based array indices
