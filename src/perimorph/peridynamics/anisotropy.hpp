@@ -12,8 +12,8 @@
 // With R4 = ∫₀^δ c_r r⁴ dr, the bulk tensor (2.64) C_ijkl = R4/2 ∫_S² Y e_i e_j
 // e_k e_l dΩ and its inverse map are those of THEORY §2.1.
 //
-// 2D (in the plane, mesh axes, θ the angle of e from x; docs/theory/
-// anisotropy-2d.md derives it): Y = a0 + a2 cos2θ + b2 sin2θ + a4 cos4θ +
+// 2D (in the plane, mesh axes, θ the angle of e from x; derived in
+// docs/verification/anisotropy.md): Y = a0 + a2 cos2θ + b2 sin2θ + a4 cos4θ +
 // b4 sin4θ. With R3 = ∫₀^δ c_r r³ dr and K = π R3 / 2,
 //   C1111 = K (3a0/4 + a2/2 + a4/8)     C2222 = K (3a0/4 − a2/2 + a4/8)
 //   C1122 = C1212 = K (a0/4 − a4/8)     C1112 = K (b2/4 + b4/8)   C2212 = K (b2/4 − b4/8)
