@@ -238,6 +238,24 @@ struct AlphaSpec {
   SourceLocation where;
 };
 
+/// Which of the bonds over the criterion break in one iteration of the
+/// implicit loop (THEORY §5): all of them (the thesis' choice), or only those
+/// whose stretch ratio s/s_crit is within `fraction` of the largest one.
+enum class BreakRule { all, fraction };
+
+/// [fracture]: bond failure by critical stretch (THEORY §5; needs [nonlocal]).
+/// Exactly one of s_crit and G_c is given; with G_c, s_crit follows from the
+/// bulk closed form G_c = κ s_crit² (THEORY §5 table) of the calibrated kernel.
+struct FractureSpec {
+  bool enabled = false;  ///< the section is present
+  double s_crit = 0.0;   ///< > 0, or 0 when G_c is given
+  double G_c = 0.0;      ///< > 0, or 0 when s_crit is given
+  BreakRule rule = BreakRule::all;
+  double fraction = 1.0;     ///< rule = fraction: 0 < fraction ≤ 1
+  int max_iterations = 100;  ///< bond-breaking iterations per increment, ≥ 1
+  SourceLocation where;      ///< the [fracture] header
+};
+
 struct CaseConfig {
   std::string path;   ///< the case file as given
   std::string title;  ///< optional [case] title
@@ -253,6 +271,7 @@ struct CaseConfig {
   OutputSpec output;
   NonlocalSpec nonlocal;
   AlphaSpec alpha;
+  FractureSpec fracture;
   int dim() const { return mesh.box.dim; }
 };
 
