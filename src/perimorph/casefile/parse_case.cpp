@@ -6,6 +6,7 @@
 
 #include "perimorph/casefile/parse_case.hpp"
 
+#include "perimorph/casefile/parse_fracture.hpp"
 #include "perimorph/casefile/parse_material.hpp"
 #include "perimorph/casefile/parse_nonlocal.hpp"
 #include "perimorph/casefile/parse_sets.hpp"
@@ -387,7 +388,7 @@ CaseConfig parse_case_string(std::string_view toml_text, const std::string& pret
   }
   const Table root(pretend_path, doc, "");
   root.check_keys({"case", "mesh", "region", "node_set", "model", "material", "dirichlet", "traction",
-                   "loading", "solver", "output", "nonlocal", "alpha"});
+                   "loading", "solver", "output", "nonlocal", "alpha", "fracture"});
   CaseConfig c;
   c.path = pretend_path;
   read_case(root, c);
@@ -399,6 +400,7 @@ CaseConfig parse_case_string(std::string_view toml_text, const std::string& pret
   detail::read_materials(root, c);
   detail::read_nonlocal(root, c);
   detail::read_alpha(root, c);
+  detail::read_fracture(root, c);
   read_boundary(root, c);
   read_loading(root, c);
   read_solver(root, c);
