@@ -1,6 +1,7 @@
 #include "perimorph/assembly/nonlocal_assembly.hpp"
 
 #include "perimorph/alpha/alpha_field.hpp"
+#include "perimorph/bonds/broken_bonds.hpp"
 #include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/bonds/nonlocal_points.hpp"
 #include "perimorph/core/error.hpp"
@@ -134,12 +135,15 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
       }
     }
   }
+  auto broken_in = [&](Index e, Index f) {
+    return s.broken != nullptr ? s.broken->pair(e, f) : std::span<const std::uint32_t>{};
+  };
   auto compute = [&](Index e, Index f, double* block) {
     const bool unit = options.unit_alpha_shortcut && unit_pair(e, f);
     const auto cuts = near(e, f) ? std::span<const mesh::Cut>(s.mesh.cuts) : std::span<const mesh::Cut>{};
     if (!plain)
       return peridynamics::pair_stiffness<D>(cell_points(e), cell_points(f), e == f, s.kernel, cuts, unit,
-                                             block);
+                                             block, broken_in(e, f));
     PointBuffer be, bf;
     auto recomputed = [&](Index c, PointBuffer& b) {
       recompute_points<D>(s.mesh, c, rule, s.scale, *s.alpha, b);
@@ -151,7 +155,7 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
     };
     const peridynamics::CellPoints pe = recomputed(e, be);
     const peridynamics::CellPoints pf = e == f ? pe : recomputed(f, bf);
-    return peridynamics::pair_stiffness<D>(pe, pf, e == f, s.kernel, cuts, unit, block);
+    return peridynamics::pair_stiffness<D>(pe, pf, e == f, s.kernel, cuts, unit, block, broken_in(e, f));
   };
   const std::size_t max_block = static_cast<std::size_t>(2 * peridynamics::max_cell_nodes * D) *
                                 static_cast<std::size_t>(2 * peridynamics::max_cell_nodes * D);
@@ -165,7 +169,9 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
     return OffsetKey{b[0] - a[0], b[1] - a[1], b[2] - a[2], static_cast<long>(s.dofmap.cell_nodes(e).size()),
                      static_cast<long>(s.dofmap.cell_nodes(f).size())};
   };
-  auto cacheable = [&](Index e, Index f) { return use_cache && unit_pair(e, f) && !near(e, f); };
+  auto cacheable = [&](Index e, Index f) {
+    return use_cache && unit_pair(e, f) && !near(e, f) && broken_in(e, f).empty();
+  };
   if (use_cache) {
     for (Index e = 0; e < ncells; ++e)
       for (Index f : s.graph.row(e))

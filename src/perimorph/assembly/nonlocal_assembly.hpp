@@ -21,6 +21,7 @@ class AlphaField;
 namespace perimorph::bonds {
 struct NonlocalPoints;
 struct CellGraph;
+class BrokenBonds;
 }  // namespace perimorph::bonds
 
 namespace perimorph::assembly {
@@ -37,6 +38,8 @@ struct NonlocalSpace {
   /// The factor make_nonlocal_points applied to every weight (thickness in 2D,
   /// cross-section in 1D, 1 in 3D). Read only when precomputed_points is false.
   double scale = 1.0;
+  /// Failed bonds, left out (null: none). Pairs with one are never cached.
+  const bonds::BrokenBonds* broken = nullptr;
 };
 
 struct NonlocalStats {
@@ -67,7 +70,7 @@ struct NonlocalOptions {
 };
 
 /// K += K_nl. Pairs whose cells have α ≡ 0 are skipped. Bonds crossing a
-/// pre-crack cut of the mesh are left out.
+/// pre-crack cut of the mesh, and failed bonds, are left out.
 NonlocalStats assemble_nonlocal(const NonlocalSpace& space, MatrixInserter& K,
                                 const NonlocalOptions& options = {});
 

@@ -42,7 +42,10 @@ io::VtkCell vtk_cell(int dim) {
 
 RunOutput::RunOutput(const Model& model, std::string directory, std::string basename,
                      std::vector<std::string> reaction_names)
-    : directory_(std::move(directory)), basename_(std::move(basename)), dim_(model.dim()) {
+    : directory_(std::move(directory)),
+      basename_(std::move(basename)),
+      dim_(model.dim()),
+      fracture_(model.config.fracture.enabled) {
   std::error_code ec;
   std::filesystem::create_directories(directory_, ec);
   if (ec) throw InputError(fmt::format("cannot create output directory '{}': {}", directory_, ec.message()));
@@ -53,6 +56,10 @@ RunOutput::RunOutput(const Model& model, std::string directory, std::string base
   for (const char* c :
        {"strain_energy", "external_work", "solver_iterations", "relative_residual", "wall_time"})
     columns.emplace_back(c);
+  if (fracture_)
+    for (const char* c : {"dissipated_energy", "released_energy", "bonds_broken", "bonds_broken_increment",
+                          "break_iterations"})
+      columns.emplace_back(c);
   csv_ = std::make_unique<io::CsvTable>(csv_path(), std::move(columns));
   if (model.config.output.vtu) pvd_ = std::make_unique<io::PvdCollection>(pvd_path());
 }
@@ -65,7 +72,7 @@ std::string RunOutput::pvd_path() const {
 }
 
 void RunOutput::write_increment_vtu(const Model& model, int increment, double load_factor,
-                                    std::span<const double> u) {
+                                    std::span<const double> u, const FractureFields& fracture) {
   if (!pvd_) return;
   const auto& dm = model.dofmap;
   io::UnstructuredGrid grid;
@@ -133,6 +140,8 @@ void RunOutput::write_increment_vtu(const Model& model, int increment, double lo
     grid.cell_data.push_back(std::move(alpha_cell));
     grid.cell_data.push_back(std::move(kind));
   }
+  if (!fracture.damage.empty()) grid.cell_data.push_back({"damage", 1, fracture.damage});
+  if (!fracture.dissipated.empty()) grid.cell_data.push_back({"dissipated_energy", 1, fracture.dissipated});
 
   const std::string name = fmt::format("{}_{:04d}.vtu", basename_, increment);
   io::write_vtu((std::filesystem::path(directory_) / name).string(), grid);
@@ -145,6 +154,10 @@ void RunOutput::add_row(const IncrementRecord& r) {
     for (int d = 0; d < dim_; ++d) row.push_back(f[d]);
   row.insert(row.end(), {r.strain_energy, r.external_work, static_cast<double>(r.iterations),
                          r.relative_residual, r.wall_time});
+  if (fracture_)
+    row.insert(row.end(),
+               {r.dissipated, r.released, static_cast<double>(r.bonds_broken),
+                static_cast<double>(r.bonds_broken_increment), static_cast<double>(r.break_iterations)});
   csv_->add_row(row);
 }
 

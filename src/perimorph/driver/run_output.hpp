@@ -22,6 +22,19 @@ struct IncrementRecord {
   int iterations = 0;
   double relative_residual = 0.0;
   double wall_time = 0.0;  ///< seconds since the start of the run
+  // Fracture runs only (THEORY §5):
+  double dissipated = 0.0;       ///< D_b: energy of every failed bond when it failed, cumulative
+  double released = 0.0;         ///< W − U − D_b: energy released by re-equilibration after failures
+  std::size_t bonds_broken = 0;  ///< failed bonds, cumulative (pre-crack cuts not counted)
+  std::size_t bonds_broken_increment = 0;
+  int break_iterations = 0;                       ///< solves after the first one in this increment
+  std::vector<std::size_t> broken_per_iteration;  ///< written to the log, not the CSV
+};
+
+/// Per-cell fracture fields for the VTU (empty for a run without [fracture]).
+struct FractureFields {
+  std::vector<double> damage;      ///< fraction of bond weight lost, mean over the cell's points
+  std::vector<double> dissipated;  ///< energy of the failed bonds, half to each end's cell
 };
 
 class RunOutput {
@@ -31,7 +44,8 @@ class RunOutput {
   RunOutput(const Model& model, std::string directory, std::string basename,
             std::vector<std::string> reaction_names);
 
-  void write_increment_vtu(const Model& model, int increment, double load_factor, std::span<const double> u);
+  void write_increment_vtu(const Model& model, int increment, double load_factor, std::span<const double> u,
+                           const FractureFields& fracture = {});
   void add_row(const IncrementRecord& r);
 
   const std::string& directory() const { return directory_; }
@@ -41,6 +55,7 @@ class RunOutput {
  private:
   std::string directory_, basename_;
   int dim_;
+  bool fracture_ = false;
   std::unique_ptr<io::CsvTable> csv_;
   std::unique_ptr<io::PvdCollection> pvd_;
 };

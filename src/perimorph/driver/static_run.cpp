@@ -1,6 +1,7 @@
 #include "perimorph/driver/static_run.hpp"
 
 #include "perimorph/core/error.hpp"
+#include "perimorph/driver/bond_failure.hpp"
 #include "perimorph/driver/boundary_conditions.hpp"
 #include "perimorph/driver/run_output.hpp"
 #include "perimorph/driver/stiffness.hpp"
@@ -12,6 +13,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <optional>
 
 namespace perimorph::driver {
 
@@ -72,6 +74,11 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
   la::LinearSolver solver(config.solver.rtol, config.solver.max_iterations);
   solver.set_operator(A, model.dofmap.node_coordinates(), dim);
 
+  // Bond failure (THEORY §5): after each solve, break the bonds over the
+  // criterion, update K, A and the right-hand side, re-solve; until none breaks.
+  std::optional<BondFailure> failure;
+  if (config.fracture.enabled) failure.emplace(model);
+
   const auto sets = reaction_sets(model);
   RunSummary summary;
   for (const auto& s : sets) summary.reaction_names.push_back(s.name);
@@ -89,34 +96,74 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
 
   for (int i = 0; i < total; ++i) {
     const double lambda = factors[static_cast<std::size_t>(i)];
-    rhs.set_all(0.0);
-    rhs.axpy(lambda, rhs_unit);
-    try {
-      summary.last_solve = solver.solve(rhs, u);
-    } catch (const SolverError& e) {
-      progress.finish();
-      const std::string kept =
-          i == 0 ? fmt::format("No increment completed (output directory {})", summary.output_directory)
-                 : fmt::format("Results of increments 1..{} are in {}", i, summary.output_directory);
-      throw SolverError(
-          fmt::format("increment {}/{} (load factor {}): {}\n{}", i + 1, total, lambda, e.what(), kept));
-    }
-    // Internal force K u: reactions on constrained dofs, energies.
+    auto kept = [&](int done) {
+      return done == 0 ? fmt::format("No increment completed (output directory {})", summary.output_directory)
+                       : fmt::format("Results of increments 1..{} are in {}", done, summary.output_directory);
+    };
+    auto solve = [&]() {
+      rhs.set_all(0.0);
+      rhs.axpy(lambda, rhs_unit);
+      try {
+        summary.last_solve = solver.solve(rhs, u);
+      } catch (const SolverError& e) {
+        progress.finish();
+        throw SolverError(
+            fmt::format("increment {}/{} (load factor {}): {}\n{}", i + 1, total, lambda, e.what(), kept(i)));
+      }
+    };
+    solve();
+    // Work of all external forces (applied + reactions = K u at equilibrium)
+    // on the elastic step from the last state: K is fixed on it, so the
+    // trapezoidal rule is exact.
     K.mult(u, internal);
-    const std::vector<double> uv = u.to_std();
-    const std::vector<double> fint = internal.to_std();
+    std::vector<double> uv = u.to_std();
+    std::vector<double> fint = internal.to_std();
+    for (std::size_t k = 0; k < uv.size(); ++k) work += 0.5 * (fint[k] + fint_prev[k]) * (uv[k] - u_prev[k]);
+
+    IncrementRecord rec;
+    if (failure) {
+      // Re-equilibration at fixed load: prescribed dofs do not move, applied
+      // forces are constant, so the external work is λ F·Δu exactly.
+      const std::size_t before = failure->broken().size();
+      for (;;) {
+        const auto bonds = failure->select(uv);
+        if (bonds.empty()) break;
+        if (rec.break_iterations == config.fracture.max_iterations) {
+          progress.finish();
+          output.write_increment_vtu(model, i + 1, lambda, uv, failure->fields());
+          throw Error(fmt::format(
+              "increment {}/{} (load factor {}): bonds still fail after {} bond-breaking iterations ({} "
+              "failed "
+              "in this increment, {} over the criterion now): the crack is running unstably at this load, or "
+              "the iterations diverge. Use smaller load increments or raise [fracture] max_iterations. The "
+              "state after the last iteration is written as increment {}; {}",
+              i + 1, total, lambda, rec.break_iterations, failure->broken().size() - before, bonds.size(),
+              i + 1, kept(i)));
+        }
+        ++rec.break_iterations;
+        rec.broken_per_iteration.push_back(bonds.size());
+        failure->apply(bonds, K, A, rhs_unit, bc);
+        solver.set_operator(A, model.dofmap.node_coordinates(), dim);
+        const std::vector<double> u_before = uv;
+        solve();
+        uv = u.to_std();
+        for (std::size_t k = 0; k < uv.size(); ++k) work += lambda * F[k] * (uv[k] - u_before[k]);
+      }
+      if (rec.break_iterations > 0) {
+        K.mult(u, internal);
+        fint = internal.to_std();
+      }
+      rec.bonds_broken = failure->broken().size();
+      rec.bonds_broken_increment = rec.bonds_broken - before;
+      rec.dissipated = failure->dissipated();
+    }
     std::vector<double> reaction(fint);
     for (std::size_t k = 0; k < reaction.size(); ++k) reaction[k] -= lambda * F[k];
     double energy = 0.0;
-    for (std::size_t k = 0; k < uv.size(); ++k) {
-      energy += 0.5 * uv[k] * fint[k];
-      // Work of all external forces (applied + reactions = K u at equilibrium), trapezoidal in the increment.
-      work += 0.5 * (fint[k] + fint_prev[k]) * (uv[k] - u_prev[k]);
-    }
+    for (std::size_t k = 0; k < uv.size(); ++k) energy += 0.5 * uv[k] * fint[k];
     u_prev = uv;
     fint_prev = fint;
 
-    IncrementRecord rec;
     rec.increment = i + 1;
     rec.load_factor = lambda;
     rec.reactions = sum_reactions(sets, reaction, dim);
@@ -125,16 +172,22 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
     rec.iterations = summary.last_solve.iterations;
     rec.relative_residual = summary.last_solve.relative_residual;
     rec.wall_time = std::chrono::duration<double>(clock::now() - start).count();
+    rec.released = failure ? work - energy - rec.dissipated : 0.0;
     output.add_row(rec);
     const int every = config.output.every;
-    if ((i + 1) % every == 0 || i + 1 == total) output.write_increment_vtu(model, i + 1, lambda, uv);
+    if ((i + 1) % every == 0 || i + 1 == total)
+      output.write_increment_vtu(model, i + 1, lambda, uv, failure ? failure->fields() : FractureFields{});
 
     summary.increments_done = i + 1;
     summary.displacement = uv;
     summary.reactions = rec.reactions;
     summary.strain_energy = energy;
     summary.external_work = work;
-    progress.update(i + 1, fmt::format("{} its, residual {:.1e}", rec.iterations, rec.relative_residual));
+    summary.history.push_back(rec);
+    progress.update(i + 1,
+                    failure ? fmt::format("{} its, {} bonds failed ({} iterations)", rec.iterations,
+                                          rec.bonds_broken_increment, rec.break_iterations)
+                            : fmt::format("{} its, residual {:.1e}", rec.iterations, rec.relative_residual));
   }
   progress.finish();
   return summary;

@@ -5,6 +5,7 @@
 // adaptivity) plug into the same loop.
 
 #include "perimorph/driver/model.hpp"
+#include "perimorph/driver/run_output.hpp"
 #include "perimorph/la/linear_solver.hpp"
 
 #include <string>
@@ -25,6 +26,7 @@ struct RunSummary {
   double strain_energy = 0.0;
   double external_work = 0.0;
   la::SolveReport last_solve;
+  std::vector<IncrementRecord> history;  ///< one record per completed increment (what the CSV holds)
   std::string output_directory, csv_path, pvd_path;
 };
 

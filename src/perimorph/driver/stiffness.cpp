@@ -6,7 +6,7 @@
 
 namespace perimorph::driver {
 
-AssembledStiffness assemble_stiffness(const Model& model) {
+AssembledStiffness assemble_stiffness(const Model& model, const bonds::BrokenBonds* broken) {
   using clock = std::chrono::steady_clock;
   auto seconds = [](clock::time_point a) { return std::chrono::duration<double>(clock::now() - a).count(); };
   auto t0 = clock::now();
@@ -20,8 +20,9 @@ AssembledStiffness assemble_stiffness(const Model& model) {
   if (model.nonlocal) {
     t0 = clock::now();
     const auto& nl = *model.nonlocal;
-    out.nonlocal =
-        assembly::assemble_nonlocal({model.mesh, model.dofmap, nl.points, nl.graph, nl.kernel}, out.K);
+    assembly::NonlocalSpace space{model.mesh, model.dofmap, nl.points, nl.graph, nl.kernel};
+    space.broken = broken;
+    out.nonlocal = assembly::assemble_nonlocal(space, out.K);
     out.nonlocal_seconds = seconds(t0);
   }
   out.K.finalize();

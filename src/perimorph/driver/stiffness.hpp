@@ -14,7 +14,7 @@ struct AssembledStiffness {
   double local_seconds = 0.0, nonlocal_seconds = 0.0, setup_seconds = 0.0;
 };
 
-/// Assembles K (unconstrained, finalized).
-AssembledStiffness assemble_stiffness(const Model& model);
+/// Assembles K (unconstrained, finalized), failed bonds (if given) left out.
+AssembledStiffness assemble_stiffness(const Model& model, const bonds::BrokenBonds* broken = nullptr);
 
 }  // namespace perimorph::driver

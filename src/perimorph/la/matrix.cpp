@@ -198,6 +198,14 @@ void Matrix::eliminate_dirichlet(std::span<const Index> rows, const Vector& x, V
                               rhs.handle()));
 }
 
+std::vector<double> Matrix::diagonal() const {
+  release_view();
+  const Index n = rows();
+  Vector d(n, 1);
+  PM_PETSC(MatGetDiagonal(m_, d.handle()));
+  return d.to_std();
+}
+
 Index Matrix::rows() const {
   release_view();
   PetscInt m = 0, n = 0;

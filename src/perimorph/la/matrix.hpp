@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include <span>
+#include <vector>
 
 namespace perimorph::la {
 
@@ -46,6 +47,8 @@ class Matrix final : public assembly::MatrixInserter {
   /// rhs[rows] = diagonal · x[rows]. The matrix stays symmetric.
   void eliminate_dirichlet(std::span<const Index> rows, const Vector& x, Vector& rhs, double diagonal = 1.0);
 
+  /// The diagonal (MatGetDiagonal).
+  std::vector<double> diagonal() const;
   Index rows() const;
   /// Number of stored non-zeros (allocated = used after finalize).
   double nonzeros() const;

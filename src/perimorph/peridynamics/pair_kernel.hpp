@@ -16,8 +16,10 @@
 #include "perimorph/peridynamics/horizon_edge.hpp"
 #include "perimorph/peridynamics/micromodulus.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <span>
 
 namespace perimorph::peridynamics {
@@ -72,11 +74,14 @@ inline bool bond_cut(const Vec3& a, const Vec3& b, std::span<const mesh::Cut> cu
 
 /// Writes the block of the pair (E, F) into `block`, row-major, dofs ordered
 /// node-major: [E's nodes × D, F's nodes × D] (only E's when same_cell).
-/// `unit_alpha`: every α is 1 (ᾱ = 1, α not read). Requires count ≤ 216 and
-/// nodes ≤ max_cell_nodes. Returns the number of bonds.
+/// `unit_alpha`: every α is 1 (ᾱ = 1, α not read). `broken`: sorted codes
+/// g · F.count + h of failed bonds, left out (bonds/broken_bonds.hpp; for
+/// E = F both orders). Requires count ≤ 216 and nodes ≤ max_cell_nodes.
+/// Returns the number of bonds.
 template <int D>
 std::size_t pair_stiffness(const CellPoints& E, const CellPoints& F, bool same_cell, const Micromodulus& c,
-                           std::span<const mesh::Cut> cuts, bool unit_alpha, double* block) {
+                           std::span<const mesh::Cut> cuts, bool unit_alpha, double* block,
+                           std::span<const std::uint32_t> broken = {}) {
   const int nE = E.nodes, nF = F.nodes;
   const int n = same_cell ? nE * D : (nE + nF) * D;
   for (int i = 0; i < n * n; ++i) block[i] = 0.0;
@@ -106,6 +111,9 @@ std::size_t pair_stiffness(const CellPoints& E, const CellPoints& F, bool same_c
       const double r2 = xi.squaredNorm();
       if (r2 >= delta2 || r2 == 0.0) continue;
       if (!cuts.empty() && bond_cut(xg, F.x[h], cuts)) continue;
+      if (!broken.empty() &&
+          std::binary_search(broken.begin(), broken.end(), static_cast<std::uint32_t>(g * F.count + h)))
+        continue;
       const double abar = unit_alpha ? 1.0 : 0.5 * (E.alpha[g] + F.alpha[h]);
       if (abar == 0.0) continue;
       const double cb =
@@ -162,6 +170,27 @@ std::size_t pair_stiffness(const CellPoints& E, const CellPoints& F, bool same_c
       for (int i = 0; i < D; ++i)
         for (int j = 0; j < D; ++j) at(nE + b, j, a, i) = at(a, i, nE + b, j);
   return bonds;
+}
+
+/// The block of one bond, in the layout of pair_stiffness: with v the values
+/// of (−N_g on E's nodes, N_h on F's) (for E = F: N_h − N_g on E's nodes),
+/// block(a i, b j) = k ξ_i ξ_j v_a v_b, k = W ᾱ c_bond / |ξ|². pair_stiffness
+/// is the sum of these over its bonds; a failed bond is removed from an
+/// assembled matrix by subtracting its block (THEORY §5).
+template <int D>
+void bond_block(const double* Ng, int nE, const double* Nh, int nF, bool same_cell, const Vec3& xi, double k,
+                double* block) {
+  std::array<double, 2 * max_cell_nodes> v{};
+  const int nodes = same_cell ? nE : nE + nF;
+  for (int a = 0; a < nE; ++a) v[static_cast<std::size_t>(a)] = -Ng[a];
+  for (int b = 0; b < nF; ++b) v[static_cast<std::size_t>(same_cell ? b : nE + b)] += Nh[b];
+  const int n = nodes * D;
+  for (int a = 0; a < nodes; ++a)
+    for (int i = 0; i < D; ++i)
+      for (int b = 0; b < nodes; ++b)
+        for (int j = 0; j < D; ++j)
+          block[(a * D + i) * n + b * D + j] =
+              k * xi[i] * xi[j] * v[static_cast<std::size_t>(a)] * v[static_cast<std::size_t>(b)];
 }
 
 }  // namespace perimorph::peridynamics

@@ -1,0 +1,151 @@
+#include "perimorph/assembly/bond_stretch.hpp"
+
+#include "perimorph/bonds/cell_graph.hpp"
+#include "perimorph/bonds/nonlocal_points.hpp"
+#include "perimorph/dofs/dof_map.hpp"
+#include "perimorph/mesh/mesh.hpp"
+#include "perimorph/peridynamics/pair_kernel.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace perimorph::assembly {
+
+namespace {
+
+/// Calls visit(f, g, h, xi, r2, W ᾱ c_bond, broken) for every bond of cell e
+/// with a cell f ≥ e (g in e, h in f; g < h when f = e), the same bonds as
+/// pair_stiffness with the same c_bond, failed ones flagged.
+template <int D, class Visit>
+void for_each_bond_of(const NonlocalSpace& s, Index e, Visit&& visit) {
+  const auto& pts = s.points;
+  const int n = pts.per_cell;
+  const bool partial = pts.partial_volume();
+  const double outer = pts.bond_reach(s.kernel.horizon);
+  const double delta2 = partial ? outer * outer : peridynamics::horizon_cutoff_squared(s.kernel.horizon);
+  for (Index f : s.graph.row(e)) {
+    if (f < e) continue;
+    if (pts.cell_alpha_max[static_cast<std::size_t>(e)] + pts.cell_alpha_max[static_cast<std::size_t>(f)] <=
+        0.0)
+      continue;
+    const auto broken = s.broken != nullptr ? s.broken->pair(e, f) : std::span<const std::uint32_t>{};
+    for (int g = 0; g < n; ++g) {
+      const std::size_t kg = pts.index(e, g);
+      for (int h = f == e ? g + 1 : 0; h < n; ++h) {
+        const std::size_t kh = pts.index(f, h);
+        const Vec3 xi = pts.x[kh] - pts.x[kg];
+        const double r2 = xi.squaredNorm();
+        if (r2 >= delta2 || r2 == 0.0) continue;
+        if (!s.mesh.cuts.empty() && peridynamics::bond_cut(pts.x[kg], pts.x[kh], s.mesh.cuts)) continue;
+        const double abar = 0.5 * (pts.alpha[kg] + pts.alpha[kh]);
+        if (abar == 0.0) continue;
+        const double cb =
+            partial ? peridynamics::bond_micromodulus<D>(s.kernel, xi, r2, &pts.half[kg], &pts.half[kh])
+                    : s.kernel.bond(xi, std::sqrt(r2));
+        if (cb == 0.0) continue;
+        const bool failed = !broken.empty() && std::binary_search(broken.begin(), broken.end(),
+                                                                  static_cast<std::uint32_t>(g * n + h));
+        visit(f, g, h, xi, r2, pts.weight[kg] * pts.weight[kh] * abar * cb, failed);
+      }
+    }
+  }
+}
+
+template <int D>
+std::vector<StretchedBond> bonds_over_dim(const NonlocalSpace& s, std::span<const double> u,
+                                          double threshold) {
+  const std::vector<Vec3> up = point_displacements(s, u);
+  const Index ncells = s.mesh.num_cells();
+  std::vector<std::vector<StretchedBond>> per_cell(static_cast<std::size_t>(ncells));
+#pragma omp parallel for schedule(dynamic, 8)
+  for (Index e = 0; e < ncells; ++e) {
+    auto& out = per_cell[static_cast<std::size_t>(e)];
+    for_each_bond_of<D>(s, e, [&](Index f, int g, int h, const Vec3& xi, double r2, double Wc, bool failed) {
+      if (failed) return;
+      const Vec3 du = up[s.points.index(f, h)] - up[s.points.index(e, g)];
+      const double eta_r = du.dot(xi);  // η |ξ|
+      const double stretch = eta_r / r2;
+      if (!(stretch > threshold)) return;
+      StretchedBond b;
+      b.id = {e, f, g, h};
+      b.stretch = stretch;
+      b.energy = 0.5 * Wc * eta_r * eta_r / r2;
+      b.k = Wc / r2;
+      b.xi = xi;
+      out.push_back(b);
+    });
+  }
+  std::vector<StretchedBond> all;
+  for (auto& v : per_cell) all.insert(all.end(), v.begin(), v.end());
+  return all;
+}
+
+template <int D>
+BondWeights point_bond_weights_dim(const NonlocalSpace& s) {
+  const auto& pts = s.points;
+  BondWeights w;
+  w.total.assign(pts.x.size(), 0.0);
+  w.lost.assign(pts.x.size(), 0.0);
+  // Serial: each bond adds to two points (of possibly different cells).
+  for (Index e = 0; e < s.mesh.num_cells(); ++e)
+    for_each_bond_of<D>(s, e, [&](Index f, int g, int h, const Vec3&, double r2, double Wc, bool failed) {
+      const double v = Wc * r2;
+      const std::size_t kg = pts.index(e, g), kh = pts.index(f, h);
+      w.total[kg] += v;
+      w.total[kh] += v;
+      if (failed) {
+        w.lost[kg] += v;
+        w.lost[kh] += v;
+      }
+    });
+  return w;
+}
+
+}  // namespace
+
+std::vector<Vec3> point_displacements(const NonlocalSpace& s, std::span<const double> u) {
+  const auto& pts = s.points;
+  const int dim = s.mesh.dim();
+  std::vector<Vec3> out(pts.x.size(), Vec3::Zero());
+  const Index ncells = s.mesh.num_cells();
+#pragma omp parallel for schedule(static)
+  for (Index c = 0; c < ncells; ++c) {
+    const auto nodes = s.dofmap.cell_nodes(c);
+    const int nn = static_cast<int>(nodes.size());
+    for (int q = 0; q < pts.per_cell; ++q) {
+      Vec3 v = Vec3::Zero();
+      for (int a = 0; a < nn; ++a) {
+        const double N = nn == 1 ? 1.0 : pts.shape[static_cast<std::size_t>(q * nn + a)];
+        for (int d = 0; d < dim; ++d)
+          v[d] += N * u[static_cast<std::size_t>(nodes[static_cast<std::size_t>(a)] * dim + d)];
+      }
+      out[pts.index(c, q)] = v;
+    }
+  }
+  return out;
+}
+
+std::vector<StretchedBond> bonds_over(const NonlocalSpace& space, std::span<const double> u,
+                                      double threshold) {
+  switch (space.mesh.dim()) {
+    case 1:
+      return bonds_over_dim<1>(space, u, threshold);
+    case 2:
+      return bonds_over_dim<2>(space, u, threshold);
+    default:
+      return bonds_over_dim<3>(space, u, threshold);
+  }
+}
+
+BondWeights point_bond_weights(const NonlocalSpace& space) {
+  switch (space.mesh.dim()) {
+    case 1:
+      return point_bond_weights_dim<1>(space);
+    case 2:
+      return point_bond_weights_dim<2>(space);
+    default:
+      return point_bond_weights_dim<3>(space);
+  }
+}
+
+}  // namespace perimorph::assembly

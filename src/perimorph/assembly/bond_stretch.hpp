@@ -1,0 +1,39 @@
+#pragma once
+// Bond stretches of a displacement field (THEORY §1, §5): s = η/|ξ| with
+// η = e·(u(x_h) − u(x_g)), u interpolated at the non-local points by the
+// cells' shape functions, for the same bonds as the non-local stiffness
+// (ᾱ c_bond > 0, not crossing a cut, not failed). Deterministic: the result
+// is in the order (e, f, g, h) for any thread count.
+
+#include "perimorph/assembly/nonlocal_assembly.hpp"
+#include "perimorph/bonds/broken_bonds.hpp"
+
+#include <span>
+#include <vector>
+
+namespace perimorph::assembly {
+
+struct StretchedBond {
+  bonds::BondId id;    ///< canonical (e ≤ f)
+  double stretch = 0;  ///< s
+  double energy = 0;   ///< ½ W ᾱ c_bond η², the energy the bond stores (THEORY §1)
+  double k = 0;        ///< W ᾱ c_bond / |ξ|²: the bond's block is k ξξᵀ ⊗ v vᵀ (pair_kernel.hpp)
+  Vec3 xi = Vec3::Zero();
+};
+
+/// The displacement at every non-local point (point k of NonlocalPoints at k).
+std::vector<Vec3> point_displacements(const NonlocalSpace& space, std::span<const double> u);
+
+/// Every intact bond with s > threshold (tension only), with its energy.
+std::vector<StretchedBond> bonds_over(const NonlocalSpace& space, std::span<const double> u,
+                                      double threshold);
+
+/// Per non-local point: Σ over its bonds of W ᾱ c_bond |ξ|² (total) and the
+/// part carried by failed bonds (lost). Damage index = lost / total (0 where
+/// total = 0). Cut bonds count in neither.
+struct BondWeights {
+  std::vector<double> total, lost;
+};
+BondWeights point_bond_weights(const NonlocalSpace& space);
+
+}  // namespace perimorph::assembly

@@ -1,0 +1,154 @@
+#include "perimorph/driver/bond_failure.hpp"
+
+#include "perimorph/bonds/nonlocal_points.hpp"
+#include "perimorph/core/error.hpp"
+#include "perimorph/dofs/dof_map.hpp"
+#include "perimorph/peridynamics/pair_kernel.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace perimorph::driver {
+
+double critical_stretch(const Model& model) {
+  const auto& spec = model.config.fracture;
+  PERIMORPH_ASSERT(spec.enabled && model.nonlocal, "critical_stretch needs [fracture] and [nonlocal]");
+  if (spec.s_crit > 0.0) return spec.s_crit;
+  const double kappa = model.nonlocal->calibration.gc_factor;
+  if (!(kappa > 0.0))
+    throw InputError(fmt::format(
+        "{}: G_c = {} cannot be turned into a critical stretch: the closed form G_c = kappa s_crit^2 (THEORY "
+        "§5) is only available for an isotropic kernel; give s_crit instead",
+        spec.where.describe(), spec.G_c));
+  return std::sqrt(spec.G_c / kappa);
+}
+
+BondFailure::BondFailure(const Model& model)
+    : model_(model),
+      s_crit_(critical_stretch(model)),
+      broken_(model.mesh.num_cells(), model.nonlocal->points.per_cell),
+      cell_dissipated_(static_cast<std::size_t>(model.mesh.num_cells()), 0.0) {}
+
+assembly::NonlocalSpace BondFailure::space() const {
+  const auto& nl = *model_.nonlocal;
+  assembly::NonlocalSpace s{model_.mesh, model_.dofmap, nl.points, nl.graph, nl.kernel};
+  s.broken = &broken_;
+  return s;
+}
+
+std::vector<assembly::StretchedBond> BondFailure::select(std::span<const double> u) const {
+  std::vector<assembly::StretchedBond> over = assembly::bonds_over(space(), u, s_crit_);
+  const auto& spec = model_.config.fracture;
+  if (spec.rule == casefile::BreakRule::fraction && !over.empty()) {
+    double smax = 0.0;
+    for (const auto& b : over) smax = std::max(smax, b.stretch);
+    const double bar = spec.fraction * smax;
+    std::erase_if(over, [&](const assembly::StretchedBond& b) { return b.stretch < bar; });
+  }
+  return over;
+}
+
+double BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, la::Matrix& K, la::Matrix& A,
+                          la::Vector& rhs_unit, const DirichletData& bc) {
+  const int dim = model_.dim();
+  const auto& pts = model_.nonlocal->points;
+  const auto& dm = model_.dofmap;
+  const Index n = dm.num_dofs();
+  // Prescribed dofs and their values at load factor 1.
+  std::vector<double> prescribed(static_cast<std::size_t>(n), std::nan(""));
+  for (std::size_t k = 0; k < bc.dofs.size(); ++k)
+    prescribed[static_cast<std::size_t>(bc.dofs[k])] = bc.values[k];
+  std::vector<double> rhs = rhs_unit.to_std();
+  const std::vector<double> ones{1.0};
+  std::vector<double> block, negative;
+  std::vector<Index> dofs, free_dofs, touched;
+  double energy = 0.0;
+  if (initial_diagonal_.empty()) initial_diagonal_ = A.diagonal();
+  for (const auto& b : bonds) {
+    if (!broken_.add(b.id)) continue;
+    energy += b.energy;
+    cell_dissipated_[static_cast<std::size_t>(b.id.e)] += 0.5 * b.energy;
+    cell_dissipated_[static_cast<std::size_t>(b.id.f)] += 0.5 * b.energy;
+    const auto nodes_e = dm.cell_nodes(b.id.e), nodes_f = dm.cell_nodes(b.id.f);
+    const bool same = b.id.e == b.id.f;
+    const int nE = static_cast<int>(nodes_e.size()), nF = static_cast<int>(nodes_f.size());
+    const double* Ng = nE == 1 ? ones.data() : pts.shape.data() + b.id.g * nE;
+    const double* Nh = nF == 1 ? ones.data() : pts.shape.data() + b.id.h * nF;
+    dofs.clear();
+    for (Index node : nodes_e)
+      for (int d = 0; d < dim; ++d) dofs.push_back(node * dim + d);
+    if (!same)
+      for (Index node : nodes_f)
+        for (int d = 0; d < dim; ++d) dofs.push_back(node * dim + d);
+    const std::size_t m = dofs.size();
+    block.assign(m * m, 0.0);
+    auto kernel = [&]<int D>() {
+      peridynamics::bond_block<D>(Ng, nE, Nh, nF, same, b.xi, b.k, block.data());
+    };
+    if (dim == 1)
+      kernel.template operator()<1>();
+    else if (dim == 2)
+      kernel.template operator()<2>();
+    else
+      kernel.template operator()<3>();
+    negative.resize(m * m);
+    for (std::size_t i = 0; i < m * m; ++i) negative[i] = -block[i];
+    K.add(dofs, dofs, negative);
+    free_dofs = dofs;
+    for (std::size_t i = 0; i < m; ++i)
+      if (!std::isnan(prescribed[static_cast<std::size_t>(dofs[i])])) free_dofs[i] = -1;  // skipped by add
+    A.add(free_dofs, free_dofs, negative);
+    for (Index d : free_dofs)
+      if (d >= 0) touched.push_back(d);
+    for (std::size_t i = 0; i < m; ++i) {
+      if (free_dofs[i] < 0) continue;
+      for (std::size_t j = 0; j < m; ++j) {
+        const double g = prescribed[static_cast<std::size_t>(dofs[j])];
+        if (!std::isnan(g)) rhs[static_cast<std::size_t>(dofs[i])] += block[i * m + j] * g;
+      }
+    }
+  }
+  K.finalize();
+  A.finalize();
+  // A free dof whose every bond has failed has a zero row: the matrix turns
+  // singular. Such a dof is coupled to nothing, so holding it at zero by a
+  // spring of its initial stiffness changes no other dof.
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  const std::vector<double> diag = A.diagonal();
+  std::vector<Index> one(1);
+  for (Index d : touched) {
+    const double d0 = initial_diagonal_[static_cast<std::size_t>(d)];
+    if (std::abs(diag[static_cast<std::size_t>(d)]) > 1e-12 * std::abs(d0)) continue;
+    one[0] = d;
+    const double spring[1] = {d0};
+    A.add(one, one, spring);
+    rhs[static_cast<std::size_t>(d)] = 0.0;
+    ++detached_;
+  }
+  if (detached_ > 0) A.finalize();
+  rhs_unit.assign(rhs);
+  dissipated_ += energy;
+  return energy;
+}
+
+FractureFields BondFailure::fields() const {
+  FractureFields out;
+  out.dissipated = cell_dissipated_;
+  const auto w = assembly::point_bond_weights(space());
+  const auto& pts = model_.nonlocal->points;
+  out.damage.assign(cell_dissipated_.size(), 0.0);
+  for (Index c = 0; c < model_.mesh.num_cells(); ++c) {
+    double d = 0.0;
+    for (int q = 0; q < pts.per_cell; ++q) {
+      const std::size_t k = pts.index(c, q);
+      d += w.total[k] > 0.0 ? w.lost[k] / w.total[k] : 0.0;
+    }
+    out.damage[static_cast<std::size_t>(c)] = d / pts.per_cell;
+  }
+  return out;
+}
+
+}  // namespace perimorph::driver

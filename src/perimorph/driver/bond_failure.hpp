@@ -1,0 +1,64 @@
+#pragma once
+// Bond failure by critical stretch (THEORY §5): which bonds break after a
+// solve, and the incremental update of the assembled matrices when they do.
+// A failed bond's block (pair_kernel.hpp, bond_block) is subtracted from K
+// and from the constrained copy A, and the right-hand side is corrected for
+// its columns on prescribed dofs; nothing is reassembled, so one update costs
+// O(newly failed bonds).
+
+#include "perimorph/assembly/bond_stretch.hpp"
+#include "perimorph/bonds/broken_bonds.hpp"
+#include "perimorph/driver/boundary_conditions.hpp"
+#include "perimorph/driver/model.hpp"
+#include "perimorph/driver/run_output.hpp"
+#include "perimorph/la/matrix.hpp"
+#include "perimorph/la/vector.hpp"
+
+#include <vector>
+
+namespace perimorph::driver {
+
+/// The critical stretch of a case: [fracture] s_crit, or from G_c by the bulk
+/// closed form G_c = κ s_crit² of the calibrated kernel (THEORY §5). Throws
+/// InputError when G_c is given and κ is not available (anisotropic kernel).
+double critical_stretch(const Model& model);
+
+class BondFailure {
+ public:
+  explicit BondFailure(const Model& model);
+
+  /// The space the stiffness is assembled with, failed bonds included.
+  assembly::NonlocalSpace space() const;
+  double s_crit() const { return s_crit_; }
+
+  /// The intact bonds to break at displacement u: those with s > s_crit, or
+  /// with rule = fraction those with s ≥ fraction · the largest such s.
+  std::vector<assembly::StretchedBond> select(std::span<const double> u) const;
+
+  /// Breaks `bonds` (from select at the current u): K −= their blocks; A −=
+  /// their blocks on free rows and columns; rhs_unit[i] += B_ij g_j for free i
+  /// and prescribed j (g = the prescribed values at load factor 1). Returns
+  /// the energy they held. A and K must be finalized again by the caller
+  /// (done here) before the next solve.
+  double apply(const std::vector<assembly::StretchedBond>& bonds, la::Matrix& K, la::Matrix& A,
+               la::Vector& rhs_unit, const DirichletData& bc);
+
+  const bonds::BrokenBonds& broken() const { return broken_; }
+  double dissipated() const { return dissipated_; }
+  /// Free dofs left with no bond and no local stiffness, held at zero (their
+  /// row of A is otherwise zero).
+  std::size_t detached_dofs() const { return detached_; }
+  /// Damage index and dissipated energy per cell, for the VTU.
+  FractureFields fields() const;
+
+ private:
+  const Model& model_;
+  double s_crit_ = 0.0;
+  bonds::BrokenBonds broken_;
+  double dissipated_ = 0.0;
+  std::vector<double> cell_dissipated_;
+  std::vector<double> initial_diagonal_;  ///< of A before any failure
+  std::size_t detached_ = 0;
+};
+
+}  // namespace perimorph::driver

@@ -1,0 +1,231 @@
+// Quasi-static fracture by critical stretch (issue 5, THEORY §5): the
+// incremental downdate of K, A and the right-hand side equals a reassembly
+// without the failed bonds; a bar and a block start to fail at the load the
+// critical stretch predicts; the energy bookkeeping W = U before failure and
+// W − U ≥ D_b after; failed bonds never heal; the same bonds fail with 1 and 2
+// threads.
+
+#include "perimorph/core/error.hpp"
+#include "perimorph/driver/bond_failure.hpp"
+#include "perimorph/driver/boundary_conditions.hpp"
+#include "perimorph/driver/model.hpp"
+#include "perimorph/driver/static_run.hpp"
+#include "perimorph/driver/stiffness.hpp"
+#include "perimorph/la/petsc_session.hpp"
+#include "support/cases.hpp"
+
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+
+namespace perimorph {
+namespace {
+
+std::string scratch_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("perimorph_fracture_" + name);
+  std::filesystem::remove_all(dir);
+  return dir.string();
+}
+
+casefile::DirichletSpec fixed(const std::string& set, int component, double value = 0.0) {
+  casefile::DirichletSpec d;
+  d.set = set;
+  d.constrained[static_cast<std::size_t>(component)] = true;
+  d.value[component] = value;
+  return d;
+}
+
+/// A bar [0, 20] (1D) or a plate [0, 4] × [0, 2] (2D) pulled along x to
+/// ε̄ = 1e-3 at load factor 1; non-local in the middle (cubic transition), the
+/// discrete calibration so that the interior carries E ε exactly.
+casefile::CaseConfig pulled_case(int dim, std::vector<double> factors, double s_crit) {
+  casefile::CaseConfig c;
+  if (dim == 1) {
+    c = testing::box_case(1, {160, 1, 1}, Vec3(20.0, 0, 0), 1.0, 0.0);
+    testing::add_nonlocal(c, casefile::KernelKind::constant, 0.5, 0.0, 3);
+    casefile::AlphaRegionSpec r;
+    r.shape = casefile::AlphaShapeKind::interval;
+    r.lower = Vec3(7.0, 0, 0);
+    r.upper = Vec3(13.0, 0, 0);
+    r.transition = 2.0;
+    c.alpha.regions = {r};
+    c.dirichlet = {fixed("xmin", 0), fixed("xmax", 0, 0.02)};
+  } else {
+    c = testing::box_case(2, {32, 16, 1}, Vec3(4.0, 2.0, 1.0), 1.0, 0.25);
+    testing::add_nonlocal(c, casefile::KernelKind::gaussian, 0.375, 0.125, 3);
+    casefile::AlphaRegionSpec r;
+    r.shape = casefile::AlphaShapeKind::box;
+    r.lower = Vec3(1.5, -1.0, 0);
+    r.upper = Vec3(2.5, 3.0, 0);
+    r.transition = 0.75;
+    c.alpha.regions = {r};
+    c.dirichlet = {fixed("xmin", 0), fixed("xmax", 0, 0.004)};
+    casefile::NodeSetSpec corner;
+    corner.name = "origin";
+    c.node_sets = {corner};
+    c.dirichlet.push_back(fixed("origin", 1));
+  }
+  c.materials[0].nu = std::numeric_limits<double>::quiet_NaN();
+  c.nonlocal.calibration = casefile::CalibrationRule::discrete;
+  c.loading.factors = std::move(factors);
+  c.fracture.enabled = true;
+  c.fracture.s_crit = s_crit;
+  c.solver.rtol = 1e-12;
+  return c;
+}
+
+/// The largest bond stretch per unit load factor, from an elastic solve at λ = 1.
+double max_stretch_per_load(const casefile::CaseConfig& c) {
+  auto elastic = c;
+  elastic.loading.factors = {1.0};
+  elastic.fracture.s_crit = 1e300;  // nothing fails
+  const auto model = driver::build_model(elastic);
+  const auto run = driver::run_static(model, {scratch_dir("elastic"), true});
+  const driver::BondFailure failure(model);
+  const auto bonds = assembly::bonds_over(failure.space(), run.displacement, 0.0);
+  double smax = 0.0;
+  for (const auto& b : bonds) smax = std::max(smax, b.stretch);
+  return smax;
+}
+
+TEST(Fracture, IncrementalDowndateEqualsReassembly) {
+  for (int dim : {1, 2}) {
+    SCOPED_TRACE(::testing::Message() << dim << "D");
+    const auto c = pulled_case(dim, {1.0}, 1e-3);
+    const auto model = driver::build_model(c);
+    auto assembled = driver::assemble_stiffness(model);
+    la::Matrix& K = assembled.K;
+    const Eigen::MatrixXd K_intact = K.to_dense();
+    const auto bc = driver::build_dirichlet(model);
+    const Index n = model.dofmap.num_dofs();
+    la::Vector g(n, dim), rhs(n, dim);
+    std::vector<double> gv(static_cast<std::size_t>(n), 0.0);
+    for (std::size_t k = 0; k < bc.dofs.size(); ++k) gv[static_cast<std::size_t>(bc.dofs[k])] = bc.values[k];
+    g.assign(gv);
+    rhs.set_all(0.0);
+    la::Matrix A = K.duplicate();
+    A.eliminate_dirichlet(bc.dofs, g, rhs);
+    // A displacement with a kink in the middle: the bonds across it stretch most.
+    std::vector<double> u(static_cast<std::size_t>(n), 0.0);
+    for (Index a = 0; a < model.dofmap.num_nodes(); ++a) {
+      const Vec3 x = model.dofmap.node_coordinate(a);
+      const double middle = dim == 1 ? 10.03 : 2.03;
+      u[static_cast<std::size_t>(a * dim)] = 0.5e-3 * x.x() + (x.x() > middle ? 2e-3 : 0.0);
+    }
+    driver::BondFailure failure(model);
+    const auto bonds = failure.select(u);
+    ASSERT_GT(bonds.size(), 10u);
+    failure.apply(bonds, K, A, rhs, bc);
+    EXPECT_EQ(failure.broken().size(), bonds.size());
+    // Reference: reassembled without the failed bonds, then constrained.
+    auto ref = driver::assemble_stiffness(model, &failure.broken());
+    la::Vector rhs_ref(n, dim);
+    rhs_ref.set_all(0.0);
+    la::Matrix A_ref = ref.K.duplicate();
+    A_ref.eliminate_dirichlet(bc.dofs, g, rhs_ref);
+    const Eigen::MatrixXd Kd = K.to_dense(), Kr = ref.K.to_dense();
+    const double scale = Kr.cwiseAbs().maxCoeff();
+    const double dK = (Kd - Kr).cwiseAbs().maxCoeff() / scale;
+    const double dA = (A.to_dense() - A_ref.to_dense()).cwiseAbs().maxCoeff() / scale;
+    const auto r1 = rhs.to_std(), r2 = rhs_ref.to_std();
+    double dr = 0.0, rmax = 0.0;
+    for (std::size_t k = 0; k < r1.size(); ++k) {
+      dr = std::max(dr, std::abs(r1[k] - r2[k]));
+      rmax = std::max(rmax, std::abs(r2[k]));
+    }
+    std::printf("%dD: %zu bonds failed; downdate vs reassembly: K %.2e, A %.2e, rhs %.2e (relative)\n", dim,
+                bonds.size(), dK, dA, dr / rmax);
+    EXPECT_LT(dK, 1e-13);
+    EXPECT_LT(dA, 1e-13);
+    EXPECT_LT(dr, 1e-13 * rmax);
+    EXPECT_GT((Kd - K_intact).cwiseAbs().maxCoeff(), 1e-6 * scale);  // the failures did change K
+    // Failed bonds never come back: a larger displacement finds none of them.
+    for (double& v : u) v *= 10.0;
+    for (const auto& b : failure.select(u)) EXPECT_FALSE(failure.broken().contains(b.id));
+  }
+}
+
+TEST(Fracture, FailureStartsAtThePredictedLoad) {
+  for (int dim : {1, 2}) {
+    SCOPED_TRACE(::testing::Message() << dim << "D");
+    const double s_crit = 1e-3;
+    const double per_load = max_stretch_per_load(pulled_case(dim, {1.0}, s_crit));
+    const double lambda_crit = s_crit / per_load;
+    std::printf("%dD: max stretch / applied strain %.6f, predicted failure load factor %.6f\n", dim,
+                per_load / 1e-3, lambda_crit);
+    // Bonds along x carry at least the applied strain; more where the strain
+    // concentrates (the coupling's strain error, the soft free faces in 2D).
+    EXPECT_GE(per_load / 1e-3, 1.0 - 1e-9);
+    const auto c = pulled_case(
+        dim, {0.5 * lambda_crit, 0.99 * lambda_crit, 1.01 * lambda_crit, 1.2 * lambda_crit}, s_crit);
+    const auto model = driver::build_model(c);
+    const auto run = driver::run_static(model, {scratch_dir("predicted"), true});
+    ASSERT_EQ(run.history.size(), 4u);
+    for (const auto& r : run.history)
+      std::printf("  load %.4f: %zu bonds failed (%d iterations), reaction %.4e, W %.6e, U %.6e, D_b %.6e\n",
+                  r.load_factor, r.bonds_broken, r.break_iterations, r.reactions.back().x(), r.external_work,
+                  r.strain_energy, r.dissipated);
+    EXPECT_EQ(run.history[0].bonds_broken, 0u);
+    EXPECT_EQ(run.history[1].bonds_broken, 0u);
+    EXPECT_GT(run.history[2].bonds_broken, 0u);
+    // Energy bookkeeping: W = U before any failure, W − U ≥ D_b after.
+    for (int i = 0; i < 2; ++i) {
+      const auto& r = run.history[static_cast<std::size_t>(i)];
+      EXPECT_NEAR(r.external_work, r.strain_energy, 1e-9 * r.strain_energy);
+      EXPECT_EQ(r.dissipated, 0.0);
+    }
+    for (std::size_t i = 2; i < run.history.size(); ++i) {
+      const auto& r = run.history[i];
+      EXPECT_GT(r.dissipated, 0.0);
+      EXPECT_GE(r.released, -1e-9 * r.external_work) << "W - U - D_b at increment " << i + 1;
+      EXPECT_GE(r.bonds_broken, run.history[i - 1].bonds_broken);  // never heal
+    }
+  }
+}
+
+TEST(Fracture, SameBondsFailWithOneAndTwoThreads) {
+  const auto c = pulled_case(2, {0.8, 1.05, 1.2, 1.4}, 1e-3);
+  const auto model = driver::build_model(c);
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const auto one = driver::run_static(model, {scratch_dir("threads1"), true});
+  omp_set_num_threads(2);
+  const auto two = driver::run_static(model, {scratch_dir("threads2"), true});
+  omp_set_num_threads(saved);
+  ASSERT_EQ(one.history.size(), two.history.size());
+  bool any = false;
+  for (std::size_t i = 0; i < one.history.size(); ++i) {
+    EXPECT_EQ(one.history[i].bonds_broken, two.history[i].bonds_broken) << "increment " << i + 1;
+    EXPECT_EQ(one.history[i].break_iterations, two.history[i].break_iterations);
+    EXPECT_EQ(one.history[i].dissipated, two.history[i].dissipated);
+    any = any || one.history[i].bonds_broken > 0;
+  }
+  EXPECT_TRUE(any) << "no bond failed: the test would be vacuous";
+  EXPECT_EQ(one.displacement, two.displacement);
+}
+
+TEST(Fracture, IterationCapStopsWithAMessageAndKeepsResults) {
+  // Only the most stretched bonds fail per iteration: the bar needs many.
+  auto c = pulled_case(1, {0.5, 1.05}, 1e-3);
+  c.fracture.rule = casefile::BreakRule::fraction;
+  c.fracture.fraction = 0.9999;
+  c.fracture.max_iterations = 2;
+  const auto model = driver::build_model(c);
+  const auto dir = scratch_dir("cap");
+  try {
+    (void)driver::run_static(model, {dir, true});
+    FAIL() << "expected the iteration cap to stop the run";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    std::printf("%s\n", msg.c_str());
+    EXPECT_NE(msg.find("increment 2/2"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("max_iterations"), std::string::npos) << msg;
+  }
+  EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(dir) / "test.csv"));
+}
+
+}  // namespace
+}  // namespace perimorph
