@@ -30,5 +30,4 @@ alpha::AlphaField make_alpha_field(const casefile::CaseConfig& config);
 /// The micromodulus of a case (shape, δ, l; scale not yet calibrated).
 peridynamics::Micromodulus make_kernel(const casefile::NonlocalSpec& spec);
 
-
 }  // namespace perimorph::driver
