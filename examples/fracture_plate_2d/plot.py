@@ -36,6 +36,7 @@ def main():
     work = [0.0] + [float(r["external_work"]) for r in rows]
     energy = [0.0] + [float(r["strain_energy"]) for r in rows]
     broken = [0] + [int(float(r["bonds_broken"])) for r in rows]
+    crack = [0.0] + [float(r["crack_area"]) for r in rows]
 
     steps = read_pvd(os.path.join(out, "fracture_plate.pvd"))
     last = steps[-1][1]
@@ -43,7 +44,7 @@ def main():
     disp = last["point_data"]["displacement"]["values"]
     damage = last["cell_data"]["damage"]["values"]
     umax = max(abs(v) for v in disp) or 1.0
-    scale = 0.1 / umax  # largest displacement drawn as 0.1 mm
+    scale = 0.15 / umax  # largest displacement drawn as 0.15 mm
     polys = [[(pts[n][0] + scale * disp[3 * n], pts[n][1] + scale * disp[3 * n + 1]) for n in cell]
              for cell in cells]
 
@@ -53,6 +54,9 @@ def main():
     ax1.set_ylabel("top reaction $R_y$ [N per mm thickness]")
     ax1.set_title("Load–opening")
     ax1.grid(alpha=0.3)
+    ax1b = ax1.twinx()
+    ax1b.plot(opening, crack, "s--", color="C3", ms=3)
+    ax1b.set_ylabel("crack length [mm] (fully failed faces, projected)", color="C3")
     ax2.plot(opening, work, "s-", label="external work W")
     ax2.plot(opening, energy, "^-", label="elastic energy U")
     ax2.plot(opening, dissipated, "o-", label="dissipated $D_b$ (failed bonds)")
@@ -72,9 +76,9 @@ def main():
     path = os.path.join(out, "fracture_plate.png")
     fig.savefig(path, dpi=130)
     print(f"wrote {path}")
-    print("opening [mm]  R_y          W            U            D_b          bonds failed")
-    for row in zip(opening, force, work, energy, dissipated, broken):
-        print("{:11.5f}  {:11.5g}  {:11.5g}  {:11.5g}  {:11.5g}  {:8d}".format(*row))
+    print("opening [mm]  R_y          W            U            D_b          bonds failed  crack [mm]")
+    for row in zip(opening, force, work, energy, dissipated, broken, crack):
+        print("{:11.5f}  {:11.5g}  {:11.5g}  {:11.5g}  {:11.5g}  {:12d}  {:9.4g}".format(*row))
 
 
 if __name__ == "__main__":

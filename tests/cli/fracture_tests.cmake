@@ -8,7 +8,7 @@ add_test(NAME cli_fracture_example_run
 set_tests_properties(cli_fracture_example_run PROPERTIES FIXTURES_SETUP cli_fracture)
 
 add_test(NAME cli_fracture_example_fields
-  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/python/read_vtu.py ${PM_FRACTURE_OUT}/fracture_plate_0020.vtu
+  COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/python/read_vtu.py ${PM_FRACTURE_OUT}/fracture_plate_0030.vtu
           --expect-cell-array damage:1 --expect-cell-array dissipated_energy:1)
 set_tests_properties(cli_fracture_example_fields PROPERTIES FIXTURES_REQUIRED cli_fracture)
 

@@ -2,6 +2,7 @@
 
 #include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/bonds/nonlocal_points.hpp"
+#include "perimorph/core/error.hpp"
 #include "perimorph/dofs/dof_map.hpp"
 #include "perimorph/mesh/mesh.hpp"
 #include "perimorph/peridynamics/pair_kernel.hpp"
@@ -101,7 +102,48 @@ BondWeights point_bond_weights_dim(const NonlocalSpace& s) {
   return w;
 }
 
+template <int D>
+std::vector<InterfaceBonds> interface_bonds_dim(const NonlocalSpace& s) {
+  PERIMORPH_ASSERT(s.mesh.structure.has_value(), "interface_bonds needs a structured box mesh");
+  const auto& layout = *s.mesh.structure;
+  const Index ncells = s.mesh.num_cells();
+  std::vector<std::vector<InterfaceBonds>> per_cell(static_cast<std::size_t>(ncells));
+#pragma omp parallel for schedule(dynamic, 8)
+  for (Index e = 0; e < ncells; ++e) {
+    const auto a = layout.cell_ijk(e);
+    auto& out = per_cell[static_cast<std::size_t>(e)];
+    for_each_bond_of<D>(s, e, [&](Index f, int, int, const Vec3&, double, double, bool failed) {
+      if (f == e) return;
+      const auto b = layout.cell_ijk(f);
+      int axis = -1, differing = 0;
+      for (int d = 0; d < 3; ++d)
+        if (a[static_cast<std::size_t>(d)] != b[static_cast<std::size_t>(d)]) {
+          ++differing;
+          axis = std::abs(a[static_cast<std::size_t>(d)] - b[static_cast<std::size_t>(d)]) == 1 ? d : -1;
+        }
+      if (differing != 1 || axis < 0) return;
+      if (out.empty() || out.back().f != f) out.push_back({e, f, axis, 0, 0});
+      ++out.back().total;
+      out.back().failed += failed ? 1 : 0;
+    });
+  }
+  std::vector<InterfaceBonds> all;
+  for (auto& v : per_cell) all.insert(all.end(), v.begin(), v.end());
+  return all;
+}
+
 }  // namespace
+
+std::vector<InterfaceBonds> interface_bonds(const NonlocalSpace& space) {
+  switch (space.mesh.dim()) {
+    case 1:
+      return interface_bonds_dim<1>(space);
+    case 2:
+      return interface_bonds_dim<2>(space);
+    default:
+      return interface_bonds_dim<3>(space);
+  }
+}
 
 std::vector<Vec3> point_displacements(const NonlocalSpace& s, std::span<const double> u) {
   const auto& pts = s.points;

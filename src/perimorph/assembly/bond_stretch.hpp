@@ -36,4 +36,14 @@ struct BondWeights {
 };
 BondWeights point_bond_weights(const NonlocalSpace& space);
 
+/// The bonds between each pair of face-adjacent cells of a structured mesh
+/// (cells e < f differing by one in one index), and how many have failed.
+/// Bonds crossing a cut are in neither count.
+struct InterfaceBonds {
+  Index e = 0, f = 0;
+  int axis = 0;  ///< the axis normal to the shared face
+  std::size_t total = 0, failed = 0;
+};
+std::vector<InterfaceBonds> interface_bonds(const NonlocalSpace& space);
+
 }  // namespace perimorph::assembly

@@ -8,7 +8,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <set>
 
 namespace perimorph::driver {
 
@@ -148,6 +150,38 @@ FractureFields BondFailure::fields() const {
     }
     out.damage[static_cast<std::size_t>(c)] = d / pts.per_cell;
   }
+  return out;
+}
+
+CrackArea BondFailure::crack_area() const {
+  CrackArea out;
+  if (!model_.mesh.structure) {
+    out.total = out.projected = std::nan("");
+    return out;
+  }
+  const auto& layout = *model_.mesh.structure;
+  const Vec3& h = layout.spacing;
+  const int dim = model_.dim();
+  auto face_area = [&](int axis) {
+    double a = model_.scale;  // thickness (2D), cross-section (1D), 1 (3D)
+    for (int d = 0; d < dim; ++d)
+      if (d != axis) a *= h[d];
+    return a;
+  };
+  // Per normal axis, the positions (the other two cell indices) of the broken faces.
+  std::array<std::set<std::array<Index, 2>>, 3> columns;
+  for (const auto& i : assembly::interface_bonds(space())) {
+    if (i.total == 0 || i.failed < i.total) continue;
+    out.total += face_area(i.axis);
+    const auto ijk = layout.cell_ijk(i.e);
+    std::array<Index, 2> key{};
+    for (int d = 0, k = 0; d < 3; ++d)
+      if (d != i.axis) key[static_cast<std::size_t>(k++)] = ijk[static_cast<std::size_t>(d)];
+    columns[static_cast<std::size_t>(i.axis)].insert(key);
+  }
+  for (int axis = 0; axis < dim; ++axis)
+    out.projected = std::max(
+        out.projected, static_cast<double>(columns[static_cast<std::size_t>(axis)].size()) * face_area(axis));
   return out;
 }
 

@@ -23,6 +23,15 @@ namespace perimorph::driver {
 /// InputError when G_c is given and κ is not available (anisotropic kernel).
 double critical_stretch(const Model& model);
 
+/// `total`: the area of every broken face. `projected`: for each normal
+/// axis, the broken faces with that normal projected along it (a face position
+/// counted once however many rows of faces are broken there), the largest
+/// over the axes: the area of a crack running across that axis, not inflated
+/// by a band of failed cells. NaN on an unstructured mesh.
+struct CrackArea {
+  double total = 0.0, projected = 0.0;
+};
+
 class BondFailure {
  public:
   explicit BondFailure(const Model& model);
@@ -50,6 +59,10 @@ class BondFailure {
   std::size_t detached_dofs() const { return detached_; }
   /// Damage index and dissipated energy per cell, for the VTU.
   FractureFields fields() const;
+  /// Crack area from the faces between adjacent cells all of whose bonds
+  /// have failed (structured meshes; 2D: length × thickness; 1D: the
+  /// cross-section). Pre-crack cuts are not counted (their bonds never existed).
+  CrackArea crack_area() const;
 
  private:
   const Model& model_;

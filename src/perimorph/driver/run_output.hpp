@@ -28,6 +28,8 @@ struct IncrementRecord {
   std::size_t bonds_broken = 0;  ///< failed bonds, cumulative (pre-crack cuts not counted)
   std::size_t bonds_broken_increment = 0;
   int break_iterations = 0;                       ///< solves after the first one in this increment
+  double crack_area = 0.0;                        ///< BondFailure::crack_area().projected
+  double broken_face_area = 0.0;                  ///< BondFailure::crack_area().total
   std::vector<std::size_t> broken_per_iteration;  ///< written to the log, not the CSV
 };
 

@@ -156,6 +156,9 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
       rec.bonds_broken = failure->broken().size();
       rec.bonds_broken_increment = rec.bonds_broken - before;
       rec.dissipated = failure->dissipated();
+      const CrackArea crack = failure->crack_area();
+      rec.crack_area = crack.projected;
+      rec.broken_face_area = crack.total;
     }
     std::vector<double> reaction(fint);
     for (std::size_t k = 0; k < reaction.size(); ++k) reaction[k] -= lambda * F[k];
