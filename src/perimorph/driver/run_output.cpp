@@ -61,6 +61,11 @@ RunOutput::RunOutput(const Model& model, std::string directory, std::string base
                           "break_iterations", "crack_area", "broken_face_area"})
       columns.emplace_back(c);
   csv_ = std::make_unique<io::CsvTable>(csv_path(), std::move(columns));
+  if (fracture_)
+    failures_csv_ = std::make_unique<io::CsvTable>(
+        (std::filesystem::path(directory_) / (basename_ + "_failures.csv")).string(),
+        std::vector<std::string>{"increment", "iteration", "bonds_failed", "energy_failed",
+                                 "max_stretch_ratio", "solver_iterations"});
   if (model.config.output.vtu) pvd_ = std::make_unique<io::PvdCollection>(pvd_path());
 }
 
@@ -159,6 +164,14 @@ void RunOutput::add_row(const IncrementRecord& r) {
                            static_cast<double>(r.bonds_broken_increment),
                            static_cast<double>(r.break_iterations), r.crack_area, r.broken_face_area});
   csv_->add_row(row);
+}
+
+void RunOutput::add_failure_row(int increment, int iteration, std::size_t bonds, double energy,
+                                double max_ratio, int solver_iterations) {
+  if (!failures_csv_) return;
+  failures_csv_->add_row({static_cast<double>(increment), static_cast<double>(iteration),
+                          static_cast<double>(bonds), energy, max_ratio,
+                          static_cast<double>(solver_iterations)});
 }
 
 }  // namespace perimorph::driver

@@ -27,10 +27,9 @@ struct IncrementRecord {
   double released = 0.0;         ///< W − U − D_b: energy released by re-equilibration after failures
   std::size_t bonds_broken = 0;  ///< failed bonds, cumulative (pre-crack cuts not counted)
   std::size_t bonds_broken_increment = 0;
-  int break_iterations = 0;                       ///< solves after the first one in this increment
-  double crack_area = 0.0;                        ///< BondFailure::crack_area().projected
-  double broken_face_area = 0.0;                  ///< BondFailure::crack_area().total
-  std::vector<std::size_t> broken_per_iteration;  ///< written to the log, not the CSV
+  int break_iterations = 0;       ///< solves after the first one in this increment
+  double crack_area = 0.0;        ///< BondFailure::crack_area().projected
+  double broken_face_area = 0.0;  ///< BondFailure::crack_area().total
 };
 
 /// Per-cell fracture fields for the VTU (empty for a run without [fracture]).
@@ -49,6 +48,11 @@ class RunOutput {
   void write_increment_vtu(const Model& model, int increment, double load_factor, std::span<const double> u,
                            const FractureFields& fracture = {});
   void add_row(const IncrementRecord& r);
+  /// Fracture runs: one row per bond-breaking iteration in BASENAME_failures.csv
+  /// (increment, iteration, bonds failed, their energy, the largest s/s_crit,
+  /// Krylov iterations of the re-solve).
+  void add_failure_row(int increment, int iteration, std::size_t bonds, double energy, double max_ratio,
+                       int solver_iterations);
 
   const std::string& directory() const { return directory_; }
   std::string csv_path() const;
@@ -58,7 +62,7 @@ class RunOutput {
   std::string directory_, basename_;
   int dim_;
   bool fracture_ = false;
-  std::unique_ptr<io::CsvTable> csv_;
+  std::unique_ptr<io::CsvTable> csv_, failures_csv_;
   std::unique_ptr<io::PvdCollection> pvd_;
 };
 

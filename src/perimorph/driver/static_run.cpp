@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <optional>
@@ -141,11 +142,14 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
               i + 1, kept(i)));
         }
         ++rec.break_iterations;
-        rec.broken_per_iteration.push_back(bonds.size());
-        failure->apply(bonds, K, A, rhs_unit, bc);
+        double max_stretch = 0.0;
+        for (const auto& b : bonds) max_stretch = std::max(max_stretch, b.stretch);
+        const double energy_failed = failure->apply(bonds, K, A, rhs_unit, bc);
         solver.set_operator(A, model.dofmap.node_coordinates(), dim);
         const std::vector<double> u_before = uv;
         solve();
+        output.add_failure_row(i + 1, rec.break_iterations, bonds.size(), energy_failed,
+                               max_stretch / failure->s_crit(), summary.last_solve.iterations);
         uv = u.to_std();
         for (std::size_t k = 0; k < uv.size(); ++k) work += lambda * F[k] * (uv[k] - u_before[k]);
       }
