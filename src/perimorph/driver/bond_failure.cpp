@@ -57,17 +57,18 @@ double BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, la:
   const int dim = model_.dim();
   const auto& pts = model_.nonlocal->points;
   const auto& dm = model_.dofmap;
-  const Index n = dm.num_dofs();
-  // Prescribed dofs and their values at load factor 1.
-  std::vector<double> prescribed(static_cast<std::size_t>(n), std::nan(""));
-  for (std::size_t k = 0; k < bc.dofs.size(); ++k)
-    prescribed[static_cast<std::size_t>(bc.dofs[k])] = bc.values[k];
-  std::vector<double> rhs = rhs_unit.to_std();
+  if (prescribed_.empty()) {
+    // Once: the prescribed values at load factor 1 (NaN on free dofs) and the
+    // diagonal of A before any failure.
+    prescribed_.assign(static_cast<std::size_t>(dm.num_dofs()), std::nan(""));
+    for (std::size_t k = 0; k < bc.dofs.size(); ++k)
+      prescribed_[static_cast<std::size_t>(bc.dofs[k])] = bc.values[k];
+    initial_diagonal_ = A.diagonal();
+  }
   const std::vector<double> ones{1.0};
-  std::vector<double> block, negative;
-  std::vector<Index> dofs, free_dofs, touched;
+  std::vector<double> block, negative, rhs_add;
+  std::vector<Index> dofs, free_dofs, touched, rhs_at;
   double energy = 0.0;
-  if (initial_diagonal_.empty()) initial_diagonal_ = A.diagonal();
   for (const auto& b : bonds) {
     if (!broken_.add(b.id)) continue;
     energy += b.energy;
@@ -100,38 +101,46 @@ double BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, la:
     K.add(dofs, dofs, negative);
     free_dofs = dofs;
     for (std::size_t i = 0; i < m; ++i)
-      if (!std::isnan(prescribed[static_cast<std::size_t>(dofs[i])])) free_dofs[i] = -1;  // skipped by add
+      if (!std::isnan(prescribed_[static_cast<std::size_t>(dofs[i])])) free_dofs[i] = -1;  // skipped by add
     A.add(free_dofs, free_dofs, negative);
-    for (Index d : free_dofs)
-      if (d >= 0) touched.push_back(d);
     for (std::size_t i = 0; i < m; ++i) {
       if (free_dofs[i] < 0) continue;
+      touched.push_back(dofs[i]);
+      double sum = 0.0;
       for (std::size_t j = 0; j < m; ++j) {
-        const double g = prescribed[static_cast<std::size_t>(dofs[j])];
-        if (!std::isnan(g)) rhs[static_cast<std::size_t>(dofs[i])] += block[i * m + j] * g;
+        const double g = prescribed_[static_cast<std::size_t>(dofs[j])];
+        if (!std::isnan(g)) sum += block[i * m + j] * g;
+      }
+      if (sum != 0.0) {
+        rhs_at.push_back(dofs[i]);
+        rhs_add.push_back(sum);
       }
     }
   }
   K.finalize();
   A.finalize();
+  rhs_unit.add_at(rhs_at, rhs_add);
   // A free dof whose every bond has failed has a zero row: the matrix turns
   // singular. Such a dof is coupled to nothing, so holding it at zero by a
   // spring of its initial stiffness changes no other dof.
   std::sort(touched.begin(), touched.end());
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-  const std::vector<double> diag = A.diagonal();
-  std::vector<Index> one(1);
-  for (Index d : touched) {
-    const double d0 = initial_diagonal_[static_cast<std::size_t>(d)];
-    if (std::abs(diag[static_cast<std::size_t>(d)]) > 1e-12 * std::abs(d0)) continue;
-    one[0] = d;
-    const double spring[1] = {d0};
-    A.add(one, one, spring);
-    rhs[static_cast<std::size_t>(d)] = 0.0;
-    ++detached_;
+  const std::vector<double> diag = A.diagonal_at(touched);
+  std::vector<Index> detached;
+  for (std::size_t k = 0; k < touched.size(); ++k) {
+    const double d0 = initial_diagonal_[static_cast<std::size_t>(touched[k])];
+    if (std::abs(diag[k]) <= 1e-12 * std::abs(d0)) detached.push_back(touched[k]);
   }
-  if (detached_ > 0) A.finalize();
-  rhs_unit.assign(rhs);
+  for (Index d : detached) {
+    const Index one[1] = {d};
+    const double spring[1] = {initial_diagonal_[static_cast<std::size_t>(d)]};
+    A.add(one, one, spring);
+  }
+  if (!detached.empty()) {
+    A.finalize();
+    rhs_unit.set_at(detached, 0.0);
+    detached_ += detached.size();
+  }
   dissipated_ += energy;
   return energy;
 }

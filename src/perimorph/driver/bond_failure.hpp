@@ -71,6 +71,7 @@ class BondFailure {
   double dissipated_ = 0.0;
   std::vector<double> cell_dissipated_;
   std::vector<double> initial_diagonal_;  ///< of A before any failure
+  std::vector<double> prescribed_;        ///< prescribed value at load factor 1, NaN on free dofs
   std::size_t detached_ = 0;
 };
 

@@ -206,6 +206,13 @@ std::vector<double> Matrix::diagonal() const {
   return d.to_std();
 }
 
+std::vector<double> Matrix::diagonal_at(std::span<const Index> rows) const {
+  release_view();
+  std::vector<double> out(rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) PM_PETSC(MatGetValues(m_, 1, &rows[k], 1, &rows[k], &out[k]));
+  return out;
+}
+
 Index Matrix::rows() const {
   release_view();
   PetscInt m = 0, n = 0;

@@ -49,6 +49,8 @@ class Matrix final : public assembly::MatrixInserter {
 
   /// The diagonal (MatGetDiagonal).
   std::vector<double> diagonal() const;
+  /// The diagonal entries at the given rows (MatGetValues; a finalized matrix).
+  std::vector<double> diagonal_at(std::span<const Index> rows) const;
   Index rows() const;
   /// Number of stored non-zeros (allocated = used after finalize).
   double nonzeros() const;

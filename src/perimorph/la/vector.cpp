@@ -60,6 +60,21 @@ void Vector::add(std::span<const double> values) {
   PM_PETSC(VecRestoreArray(v_, &a));
 }
 
+void Vector::add_at(std::span<const Index> indices, std::span<const double> values) {
+  PERIMORPH_ASSERT(indices.size() == values.size(), "add_at: sizes differ");
+  PetscScalar* a = nullptr;
+  PM_PETSC(VecGetArray(v_, &a));
+  for (std::size_t k = 0; k < indices.size(); ++k) a[indices[k]] += values[k];
+  PM_PETSC(VecRestoreArray(v_, &a));
+}
+
+void Vector::set_at(std::span<const Index> indices, double value) {
+  PetscScalar* a = nullptr;
+  PM_PETSC(VecGetArray(v_, &a));
+  for (Index i : indices) a[i] = value;
+  PM_PETSC(VecRestoreArray(v_, &a));
+}
+
 std::vector<double> Vector::to_std() const {
   const PetscScalar* a = nullptr;
   PM_PETSC(VecGetArrayRead(v_, &a));

@@ -25,6 +25,10 @@ class Vector {
   void assign(std::span<const double> values);
   /// Adds `values` entry-wise (size() entries).
   void add(std::span<const double> values);
+  /// this[indices[k]] += values[k] (local indices; repeated indices add up).
+  void add_at(std::span<const Index> indices, std::span<const double> values);
+  /// this[indices[k]] = value.
+  void set_at(std::span<const Index> indices, double value);
   std::vector<double> to_std() const;
   double norm2() const;
   double dot(const Vector& other) const;
