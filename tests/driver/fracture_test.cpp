@@ -38,7 +38,8 @@ casefile::DirichletSpec fixed(const std::string& set, int component, double valu
   return d;
 }
 
-/// A bar [0, 20] (1D) or a plate [0, 4] × [0, 2] (2D) pulled along x to
+/// A bar [0, 20] (1D), a plate [0, 4] × [0, 2] (2D) or a block [0, 4] × [0, 2]
+/// × [0, 1] (3D) pulled along x to
 /// ε̄ = 1e-3 at load factor 1; non-local in the middle (cubic transition), the
 /// discrete calibration so that the interior carries E ε exactly.
 casefile::CaseConfig pulled_case(int dim, std::vector<double> factors, double s_crit) {
@@ -53,6 +54,24 @@ casefile::CaseConfig pulled_case(int dim, std::vector<double> factors, double s_
     r.transition = 2.0;
     c.alpha.regions = {r};
     c.dirichlet = {fixed("xmin", 0), fixed("xmax", 0, 0.02)};
+  } else if (dim == 3) {
+    c = testing::box_case(3, {16, 8, 4}, Vec3(4.0, 2.0, 1.0), 1.0, 0.25);
+    testing::add_nonlocal(c, casefile::KernelKind::gaussian, 0.75, 0.25, 2);
+    casefile::AlphaRegionSpec r;
+    r.shape = casefile::AlphaShapeKind::box;
+    r.lower = Vec3(1.5, -1.0, -1.0);
+    r.upper = Vec3(2.5, 3.0, 2.0);
+    r.transition = 0.75;
+    c.alpha.regions = {r};
+    c.dirichlet = {fixed("xmin", 0), fixed("xmax", 0, 0.004)};
+    casefile::NodeSetSpec corner, edge;
+    corner.name = "origin";
+    edge.name = "yedge";  // (0, 2, 0): stops the rotation about x
+    edge.lower = edge.upper = Vec3(0.0, 2.0, 0.0);
+    c.node_sets = {corner, edge};
+    c.dirichlet.push_back(fixed("origin", 1));
+    c.dirichlet.push_back(fixed("origin", 2));
+    c.dirichlet.push_back(fixed("yedge", 2));
   } else {
     c = testing::box_case(2, {32, 16, 1}, Vec3(4.0, 2.0, 1.0), 1.0, 0.25);
     testing::add_nonlocal(c, casefile::KernelKind::gaussian, 0.375, 0.125, 3);
@@ -167,7 +186,7 @@ TEST(Fracture, IncrementalDowndateEqualsReassembly) {
 }
 
 TEST(Fracture, FailureStartsAtThePredictedLoad) {
-  for (int dim : {1, 2}) {
+  for (int dim : {1, 2, 3}) {
     SCOPED_TRACE(::testing::Message() << dim << "D");
     const double s_crit = 1e-3;
     const double per_load = max_stretch_per_load(pulled_case(dim, {1.0}, s_crit));

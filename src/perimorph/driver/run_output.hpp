@@ -23,9 +23,10 @@ struct IncrementRecord {
   double relative_residual = 0.0;
   double wall_time = 0.0;  ///< seconds since the start of the run
   // Fracture runs only (THEORY §5):
-  double dissipated = 0.0;       ///< D_b: energy of every failed bond when it failed, cumulative
-  double released = 0.0;         ///< W − U − D_b: energy released by re-equilibration after failures
-  std::size_t bonds_broken = 0;  ///< failed bonds, cumulative (pre-crack cuts not counted)
+  double dissipated = 0.0;            ///< D_b: energy of every failed bond when it failed, cumulative
+  double dissipated_increment = 0.0;  ///< the part of D_b from this increment
+  double released = 0.0;              ///< W − U − D_b: energy released by re-equilibration after failures
+  std::size_t bonds_broken = 0;       ///< failed bonds, cumulative (pre-crack cuts not counted)
   std::size_t bonds_broken_increment = 0;
   int break_iterations = 0;       ///< solves after the first one in this increment
   double crack_area = 0.0;        ///< BondFailure::crack_area().projected

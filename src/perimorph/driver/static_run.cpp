@@ -126,6 +126,7 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
       // Re-equilibration at fixed load: prescribed dofs do not move, applied
       // forces are constant, so the external work is λ F·Δu exactly.
       const std::size_t before = failure->broken().size();
+      const double dissipated_before = failure->dissipated();
       for (;;) {
         const auto bonds = failure->select(uv);
         if (bonds.empty()) break;
@@ -160,6 +161,7 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
       rec.bonds_broken = failure->broken().size();
       rec.bonds_broken_increment = rec.bonds_broken - before;
       rec.dissipated = failure->dissipated();
+      rec.dissipated_increment = rec.dissipated - dissipated_before;
       const CrackArea crack = failure->crack_area();
       rec.crack_area = crack.projected;
       rec.broken_face_area = crack.total;
