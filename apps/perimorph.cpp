@@ -5,9 +5,11 @@
 //   perimorph info CASE                  calibration and discretization figures
 //   perimorph run CASE [-o DIR] [--quiet] [PETSc options...]
 //   perimorph ghost-forces CASE --strain ... [-o DIR]
+//   perimorph gc CASE --point X Y Z --normal NX NY NZ [--s-crit S]
 
 #include "perimorph/casefile/parse_case.hpp"
 #include "perimorph/core/error.hpp"
+#include "perimorph/driver/effective_gc.hpp"
 #include "perimorph/driver/ghost_forces.hpp"
 #include "perimorph/driver/model.hpp"
 #include "perimorph/driver/static_run.hpp"
@@ -17,9 +19,11 @@
 #include <fmt/ranges.h>
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -157,6 +161,72 @@ int ghost_forces(const std::string& path, const std::vector<double>& strain, con
   return 0;
 }
 
+/// The critical energy release rate of a crack plane: closed form, actual
+/// geometry and bulk window (driver/effective_gc.hpp).
+int gc(const std::string& path, std::vector<double> point, std::vector<double> normal,
+       std::optional<double> s_option) {
+  namespace drv = perimorph::driver;
+  const auto config = perimorph::casefile::parse_case_file(path);
+  auto petsc = quiet_petsc();
+  const auto model = drv::build_model(config);
+  if (!model.nonlocal)
+    throw perimorph::InputError(
+        fmt::format("{}: no [nonlocal] section: G_c is a property of the bond model", path));
+  point.resize(3, 0.0);
+  normal.resize(3, 0.0);
+  const double kappa = model.nonlocal->calibration.gc_factor;
+  const auto s = drv::resolve_critical_stretch(config.fracture, kappa, s_option);
+  const auto g =
+      drv::effective_gc(model, {{point[0], point[1], point[2]}, {normal[0], normal[1], normal[2]}}, s.value);
+  const bool per_s2 = s.source == drv::StretchSource::unit;
+  const char* unit = per_s2 ? " per s_crit^2" : "";
+  const char* from = s.source == drv::StretchSource::option        ? "--s-crit"
+                     : s.source == drv::StretchSource::case_s_crit ? "[fracture] s_crit"
+                     : s.source == drv::StretchSource::case_G_c    ? "[fracture] G_c through the closed form"
+                                                                   : "none given: figures are per s_crit^2";
+  const auto& p = g.plane;
+  fmt::print("case         {}\n", path);
+  fmt::print("plane        through ({:.6g}, {:.6g}, {:.6g}), unit normal ({:.6g}, {:.6g}, {:.6g})\n",
+             p.point.x(), p.point.y(), p.point.z(), p.normal.x(), p.normal.y(), p.normal.z());
+  fmt::print("s_crit       {:.6g} ({})\n", s.value, from);
+  if (std::isfinite(g.closed_form))
+    fmt::print("closed form  G_c = {:.6e}{}  (bulk, kappa s_crit^2, kappa = {:.6e}, THEORY §5)\n",
+               g.closed_form, unit, kappa);
+  else
+    fmt::print("closed form  not available: an anisotropic kernel's G_c depends on the plane\n");
+  auto ratio = [&](double v) {
+    return std::isfinite(g.closed_form) && std::isfinite(v)
+               ? fmt::format(", {:.4f} of the closed form", v / g.closed_form)
+               : std::string();
+  };
+  fmt::print("actual       G_c = {:.6e}{}  (every crossing bond over the plane's area{})\n", g.actual.gc(),
+             unit, ratio(g.actual.gc()));
+  if (g.window.area > 0)
+    fmt::print("bulk window  G_c = {:.6e}{}  (crossing farther than delta = {:.6g} from every face{})\n",
+               g.window.gc(), unit, g.horizon, ratio(g.window.gc()));
+  else
+    fmt::print("bulk window  none: no part of the plane is farther than delta = {:.6g} from every face\n",
+               g.horizon);
+  fmt::print(
+      "bonds        {} crossing ({} with one end on the plane, weight 1/2), {} in the window; {} cut "
+      "by a pre-crack and left out{}\n",
+      g.actual.bonds, g.touching, g.window.bonds, g.cut,
+      g.cut > 0 ? " (from both figures; the areas include the pre-cracked part)" : "");
+  if (g.reduced_alpha > 0)
+    fmt::print(
+        "alpha        {} of the counted bonds have mean alpha < 1 (morphing or local zone): their energy is "
+        "scaled by alpha, and the local model's share is not counted\n",
+        g.reduced_alpha);
+  fmt::print("area         plane {:.6e}, window {:.6e}{}\n", g.actual.area, g.window.area,
+             model.dim() == 2   ? " (length x thickness)"
+             : model.dim() == 1 ? " (cross-section)"
+                                : "");
+  fmt::print(
+      "units        G_c in energy per crack area = the case's stiffness unit x length unit (e.g. "
+      "MPa mm = N/mm = mJ/mm^2)\n");
+  return 0;
+}
+
 int run(const std::string& path, const std::string& out_dir, bool quiet,
         std::vector<std::string> petsc_args) {
   const auto config = perimorph::casefile::parse_case_file(path);
@@ -227,6 +297,28 @@ int main(int argc, char** argv) {
       ->delimiter(',');
   ghost_cmd->add_option("-o,--output", out_dir, "Output directory (default: the case's [output] directory)");
 
+  std::vector<double> gc_point, gc_normal;
+  std::optional<double> gc_s_crit;
+  auto* gc_cmd = app.add_subcommand(
+      "gc",
+      "Critical energy release rate of the crack plane through --point with normal --normal: the bulk closed "
+      "form kappa s_crit^2, the actual geometry (every bond crossing the plane, incomplete horizons near "
+      "free faces included, pre-cracked bonds left out) and the bulk window (crossings farther than delta "
+      "from every face) (THEORY §5)");
+  gc_cmd->add_option("CASE", case_path, "Case file (TOML) with a [nonlocal] section")->required();
+  gc_cmd->add_option("--point", gc_point, "A point of the plane: X [Y [Z]]")->required()->expected(1, 3);
+  gc_cmd
+      ->add_option("--normal", gc_normal,
+                   "The plane's normal: NX [NY [NZ]], any length; in 2D without z component, in 1D 1 0 0")
+      ->required()
+      ->expected(1, 3);
+  gc_cmd->add_option("--s-crit", gc_s_crit,
+                     "Critical bond stretch (default: the case's [fracture] s_crit, or s_crit from its G_c; "
+                     "else the figures are per s_crit^2)");
+  gc_cmd->footer(
+      "Any crack plane of a box: its area inside the box is computed for any normal (a polygon in 3D, a "
+      "segment times the thickness in 2D).");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -237,6 +329,7 @@ int main(int argc, char** argv) {
     if (*check_cmd) return check(case_path);
     if (*info_cmd) return info(case_path);
     if (*ghost_cmd) return ghost_forces(case_path, strain, out_dir);
+    if (*gc_cmd) return gc(case_path, gc_point, gc_normal, gc_s_crit);
     return run(case_path, out_dir, quiet, run_cmd->remaining());
   } catch (const perimorph::InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
