@@ -557,7 +557,29 @@ def main(argv):
         if cvm is not None and cvm["crack_area"][-1] > 0 and n_cross:
             bond_ratio = float((cvm["bonds"][-1] / cvm["crack_area"][-1]) / (n_cross / LIGAMENT_AREA))
             e_ratio = float((cvm["D"][-1] / cvm["bonds"][-1]) / (g_eff * LIGAMENT_AREA / n_cross))
-        rows_gc.append({"bond_ratio": bond_ratio, "energy_per_bond_ratio": e_ratio, "crossing_bonds": n_cross,
+        # diagnostic: a crack length from the damage of the two cell rows touching the plane (last VTU):
+        # Σ over the columns of min(1, d / d_max) h_x, mean of the two rows (not the BENCHMARKS measure)
+        a_dmg = g_dmg = e_dmg = None
+        vp = vtu_at(R[series[m]], R[series[m]]["increments"]) if series[m] in CV else None
+        if vp is not None:
+            v = read_vtu(vp)
+            pts, cells = np.array(v["points"]), np.array(v["cells"])
+            cc = pts[cells].mean(axis=1)
+            dmg = np.array(v["cell_data"]["damage"]["values"])
+            hx = (facts["upper"][0] - facts["lower"][0]) / MESHES[m][0]
+            hy = (facts["upper"][1] - facts["lower"][1]) / MESHES[m][1]
+            lens = []
+            for yc in (facts["crack_y"] - hy / 2, facts["crack_y"] + hy / 2):
+                row = np.abs(cc[:, 1] - yc) < 1e-6 * hy
+                ix = np.floor((cc[row, 0] - facts["lower"][0]) / hx + 1e-9).astype(int)
+                prof = np.bincount(ix, weights=dmg[row]) / np.maximum(np.bincount(ix), 1)
+                if prof.max() > 0:
+                    lens.append(float(np.sum(np.minimum(1.0, prof / prof.max())) * hx))
+            if lens:
+                a_dmg = float(np.mean(lens))
+                g_dmg = float(CV[series[m]]["D"][-1] / (a_dmg * facts["thickness"]))
+                e_dmg = abs(g_dmg - g_eff) / g_eff
+        rows_gc.append({"a_damage": a_dmg, "G_app_damage": g_dmg, "err_damage": e_dmg, "bond_ratio": bond_ratio, "energy_per_bond_ratio": e_ratio, "crossing_bonds": n_cross,
                         "mesh": m, "h": eval_fraction(m) ** -1, "elements": int(np.prod(MESHES[m])),
                         "G_eff_program": g_eff, "G_eff_plane_figure": gc[m]["actual"], "G_app_last": ga,
                         "G_app_56": ga56, "err_last": e, "err_56": e56, "err_last_continuum": ec,
@@ -688,6 +710,12 @@ def write_report(base, rep, quick, series, nis, q3, ni_mesh, series_meshes, fail
                         fmt(r["crossing_bonds"], ".0f"), fmt(r["bond_ratio"], ".3f"),
                         fmt(r["energy_per_bond_ratio"], ".3f")]
                        for r in rep["gc_table"]]))
+    L.append("\nDiagnostic, not the BENCHMARKS measure: crack length from the damage of the two cell rows that "
+             "touch the plane (Σ over the columns of min(1, d / d_max) h, mean of the two rows; last VTU) and the "
+             "G_c it gives:\n")
+    L.append(md_table(["h", "a from damage (u_d)", "a from crack_area (u_d)", "D / (a_damage t)", "error vs G_eff(h)"],
+                      [[fmt(r["h"], ".3g"), fmt(r["a_damage"], ".3g"), fmt(r["crack_length_last"], ".3g"),
+                        fmt(r["G_app_damage"]), pct(r["err_damage"], ".1f")] for r in rep["gc_table"]]))
     L.append("\nG_app / G_eff = ρ_n × ρ_e at u_d: ρ_n = (failed bonds / crack area) / (crossing bonds / ligament "
              "area), more than 1 where bonds fail off the crack plane or ahead of the last fully failed face; "
              "ρ_e = (D / failed bonds) / (energy of a crossing bond at s_crit, mean), more than 1 where bonds "
