@@ -139,6 +139,20 @@ TEST(CaseFileFracture, RuleMessages) {
   EXPECT_TRUE(contains(msg, "rule defaults to \"all\"")) << msg;
 }
 
+TEST(CaseFileFracture, NoFailNamesRegions) {
+  std::string text = case_with("s_crit = 0.01\nno_fail = \"grips\"\n");
+  text.insert(text.find("[[material]]"), "[[region]]\nname = \"grips\"\nlower = [0, 0]\nupper = [4, 0.5]\n");
+  EXPECT_EQ(parse_case_string(text, "f.toml").fracture.no_fail, std::vector<std::string>{"grips"});
+  std::string listed = text;
+  listed.replace(listed.find("no_fail = \"grips\""), 17, "no_fail = [\"grips\"]");
+  EXPECT_EQ(parse_case_string(listed, "f.toml").fracture.no_fail, std::vector<std::string>{"grips"});
+  EXPECT_TRUE(contains(error_of(case_with("s_crit = 0.01\nno_fail = [\"grips\"]\n")),
+                       "this case defines none"));
+  std::string twice = text;
+  twice.replace(twice.find("no_fail = \"grips\""), 17, "no_fail = [\"grips\", \"grips\"]");
+  EXPECT_TRUE(contains(error_of(twice), "listed twice")) << error_of(twice);
+}
+
 TEST(CaseFileFracture, NeedsNonlocalAndKnownKeys) {
   std::string text = case_with("s_crit = 0.01\n");
   text.erase(text.find("[nonlocal]"), text.find("[fracture]") - text.find("[nonlocal]"));

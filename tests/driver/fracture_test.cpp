@@ -244,6 +244,50 @@ TEST(Fracture, SameBondsFailWithOneAndTwoThreads) {
   EXPECT_EQ(one.displacement, two.displacement);
 }
 
+// [fracture] no_fail: a bond with an end in a listed region is never
+// selected; the others are selected exactly as without the option.
+TEST(Fracture, NoFailRegionKeepsItsBonds) {
+  auto c = pulled_case(2, {1.0}, 1e-3);
+  c.fracture.s_crit = 1e300;
+  const auto plain_model = driver::build_model(c);
+  const auto run = driver::run_static(plain_model, {scratch_dir("nofail"), true});
+  const driver::BondFailure plain(plain_model);
+  // A threshold that most of the non-local zone's x-bonds exceed.
+  const auto all = assembly::bonds_over(plain.space(), run.displacement, 0.0);
+  double smax = 0.0;
+  for (const auto& b : all) smax = std::max(smax, b.stretch);
+  c.fracture.s_crit = 0.5 * smax;
+  casefile::RegionSpec left;
+  left.name = "left_half";
+  left.id = 1;
+  left.lower = Vec3(-1.0, -1.0, 0.0);
+  left.upper = Vec3(2.0, 3.0, 0.0);
+  c.regions = {left};
+  const auto free_model = driver::build_model(c);
+  const auto expected = driver::BondFailure(free_model).select(run.displacement);
+  c.fracture.no_fail = {"left_half"};
+  const auto kept_model = driver::build_model(c);
+  const auto selected = driver::BondFailure(kept_model).select(run.displacement);
+  const auto& in_left = kept_model.mesh.cell_sets.at("left_half");
+  auto is_left = [&](Index cell) { return std::binary_search(in_left.begin(), in_left.end(), cell); };
+  ASSERT_TRUE(std::is_sorted(in_left.begin(), in_left.end()));
+  std::size_t outside = 0, touching = 0;
+  for (const auto& b : expected) (is_left(b.id.e) || is_left(b.id.f) ? touching : outside) += 1;
+  std::printf("bonds over 0.5 s_max: %zu, %zu of them touch the no-fail half\n", expected.size(), touching);
+  ASSERT_GT(touching, 0u) << "the region holds no candidate bond: the test would be vacuous";
+  ASSERT_GT(outside, 0u);
+  ASSERT_EQ(selected.size(), outside);
+  for (const auto& b : selected) {
+    EXPECT_FALSE(is_left(b.id.e) || is_left(b.id.f));
+  }
+  // Through the whole run: with the region covering the block nothing fails.
+  left.upper = Vec3(5.0, 3.0, 0.0);
+  c.regions = {left};
+  c.loading.factors = {1.0};
+  const auto none = driver::run_static(driver::build_model(c), {scratch_dir("nofail_all"), true});
+  EXPECT_EQ(none.history.back().bonds_broken, 0u);  // `expected` shows bonds over s_crit at this load
+}
+
 TEST(Fracture, IterationCapStopsWithAMessageAndKeepsResults) {
   // Only the most stretched bonds fail per iteration: the bar needs many.
   auto c = pulled_case(1, {0.5, 1.05}, 1e-3);

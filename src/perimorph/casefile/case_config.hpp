@@ -253,6 +253,9 @@ struct FractureSpec {
   BreakRule rule = BreakRule::all;
   double fraction = 1.0;     ///< rule = fraction: 0 < fraction ≤ 1
   int max_iterations = 100;  ///< bond-breaking iterations per increment, ≥ 1
+  /// Names of [[region]]s whose bonds never fail: a bond with either end in
+  /// one of their cells is kept (a no-fail zone, e.g. under a load patch).
+  std::vector<std::string> no_fail;
   SourceLocation where;      ///< the [fracture] header
 };
 

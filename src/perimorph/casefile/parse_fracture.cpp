@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <limits>
 #include <optional>
 #include <string>
@@ -57,7 +58,7 @@ void read_fracture(const Table& root, CaseConfig& c) {
     t->fail(
         "bond failure needs a [nonlocal] section: bonds exist, and break, only in the non-local "
         "(peridynamic) model that [nonlocal] defines (kernel, horizon); add it, or remove [fracture]");
-  t->check_keys({"s_crit", "G_c", "rule", "fraction", "max_iterations"});
+  t->check_keys({"s_crit", "G_c", "rule", "fraction", "max_iterations", "no_fail"});
   FractureSpec& f = c.fracture;
   f.enabled = true;
   f.where = t->where();
@@ -115,6 +116,31 @@ void read_fracture(const Table& root, CaseConfig& c) {
           "{}",
           n));
     f.max_iterations = n;
+  }
+
+  if (auto v = t->get("no_fail")) {
+    std::vector<Value> names;
+    if (v->node().is_array())
+      names = v->elements();
+    else
+      names.push_back(*v);
+    std::vector<std::string> known;
+    for (const RegionSpec& r : c.regions) known.push_back(r.name);
+    for (const Value& n : names) {
+      const std::string name = n.name();
+      if (std::find(known.begin(), known.end(), name) == known.end()) {
+        const std::string close = closest_match(name, known);
+        n.fail(fmt::format(
+            "no [[region]] is named {:?}; {}no_fail takes the names of [[region]] boxes whose bonds never "
+            "fail{}",
+            name, close.empty() ? "" : fmt::format("did you mean {:?}? ", close),
+            known.empty() ? " (this case defines none: add a [[region]] with name, lower, upper)"
+                          : fmt::format(" (defined: {})", fmt::join(known, ", "))));
+      }
+      if (std::find(f.no_fail.begin(), f.no_fail.end(), name) != f.no_fail.end())
+        n.fail(fmt::format("region {:?} is listed twice", name));
+      f.no_fail.push_back(name);
+    }
   }
 }
 

@@ -31,7 +31,12 @@ BondFailure::BondFailure(const Model& model)
     : model_(model),
       s_crit_(critical_stretch(model)),
       broken_(model.mesh.num_cells(), model.nonlocal->points.per_cell),
-      cell_dissipated_(static_cast<std::size_t>(model.mesh.num_cells()), 0.0) {}
+      cell_dissipated_(static_cast<std::size_t>(model.mesh.num_cells()), 0.0) {
+  for (const std::string& region : model.config.fracture.no_fail) {
+    if (no_fail_.empty()) no_fail_.assign(static_cast<std::size_t>(model.mesh.num_cells()), 0);
+    for (Index c : model.mesh.cell_sets.at(region)) no_fail_[static_cast<std::size_t>(c)] = 1;
+  }
+}
 
 assembly::NonlocalSpace BondFailure::space() const {
   const auto& nl = *model_.nonlocal;
@@ -42,6 +47,10 @@ assembly::NonlocalSpace BondFailure::space() const {
 
 std::vector<assembly::StretchedBond> BondFailure::select(std::span<const double> u) const {
   std::vector<assembly::StretchedBond> over = assembly::bonds_over(space(), u, s_crit_);
+  if (!no_fail_.empty())
+    std::erase_if(over, [&](const assembly::StretchedBond& b) {
+      return no_fail_[static_cast<std::size_t>(b.id.e)] || no_fail_[static_cast<std::size_t>(b.id.f)];
+    });
   const auto& spec = model_.config.fracture;
   if (spec.rule == casefile::BreakRule::fraction && !over.empty()) {
     double smax = 0.0;

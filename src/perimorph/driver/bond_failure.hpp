@@ -41,7 +41,8 @@ class BondFailure {
   double s_crit() const { return s_crit_; }
 
   /// The intact bonds to break at displacement u: those with s > s_crit, or
-  /// with rule = fraction those with s ≥ fraction · the largest such s.
+  /// with rule = fraction those with s ≥ fraction · the largest such s;
+  /// bonds with an end in a [fracture] no_fail region are never selected.
   std::vector<assembly::StretchedBond> select(std::span<const double> u) const;
 
   /// Breaks `bonds` (from select at the current u): K −= their blocks; A −=
@@ -73,6 +74,7 @@ class BondFailure {
   std::vector<double> initial_diagonal_;  ///< of A before any failure
   std::vector<double> prescribed_;        ///< prescribed value at load factor 1, NaN on free dofs
   std::size_t detached_ = 0;
+  std::vector<char> no_fail_;  ///< per cell, 1 in a no_fail region; empty when there is none
 };
 
 }  // namespace perimorph::driver

@@ -122,9 +122,14 @@ bool Cut::crosses(const Vec3& a, const Vec3& b) const {
   if (da == db) return false;  // parallel to (or inside) the cut: does not cross it
   const Vec3 p = a + (b - a) * (da / (da - db));
   if (dim == 1) return true;
+  // The cut is closed: a segment through its boundary crosses it. The
+  // crossing point carries round-off, so s and t are compared with a margin
+  // of kEdgeTie (in units of the edge lengths); without it, mirror-image bonds
+  // through the edge would be decided by the last bit of p.
+  constexpr double kEdgeTie = 1e-12;
   auto [s, t] = in_plane_coordinates(*this, p);
-  if (s < 0 || s > 1) return false;
-  return dim == 2 || (t >= 0 && t <= 1);
+  if (s < -kEdgeTie || s > 1 + kEdgeTie) return false;
+  return dim == 2 || (t >= -kEdgeTie && t <= 1 + kEdgeTie);
 }
 
 }  // namespace perimorph::mesh

@@ -34,7 +34,9 @@ struct Cut {
 
   /// Unit normal of the cut's line (2D, in the xy plane) or plane (3D); e_x in 1D.
   Vec3 normal() const;
-  /// True if the open segment a–b crosses the cut (touching counts as crossing).
+  /// True if the open segment a–b crosses the closed cut (touching its
+  /// boundary counts as crossing, with a relative margin of 1e-12 of the edge
+  /// lengths so that round-off in the crossing point does not decide ties).
   bool crosses(const Vec3& a, const Vec3& b) const;
   /// True if p lies on the closed cut within tolerance tol (absolute length).
   bool contains(const Vec3& p, double tol) const;
