@@ -48,8 +48,8 @@ void check_ties(int dim, double h, int& ties) {
       const long double x = a.x() + t * (static_cast<long double>(b.x()) - a.x());
       if (std::fabs(x - 4.0L) > 1e-13L) continue;
       ++ties;
-      EXPECT_TRUE(peridynamics::bond_cut(a, b, cuts)) << dim << "D, h " << h << ": " << a.transpose() << " to "
-                                                      << b.transpose();
+      EXPECT_TRUE(peridynamics::bond_cut(a, b, cuts))
+          << dim << "D, h " << h << ": " << a.transpose() << " to " << b.transpose();
       EXPECT_TRUE(peridynamics::bond_cut(b, a, cuts));
     }
 }

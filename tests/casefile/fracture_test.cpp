@@ -146,8 +146,8 @@ TEST(CaseFileFracture, NoFailNamesRegions) {
   std::string listed = text;
   listed.replace(listed.find("no_fail = \"grips\""), 17, "no_fail = [\"grips\"]");
   EXPECT_EQ(parse_case_string(listed, "f.toml").fracture.no_fail, std::vector<std::string>{"grips"});
-  EXPECT_TRUE(contains(error_of(case_with("s_crit = 0.01\nno_fail = [\"grips\"]\n")),
-                       "this case defines none"));
+  EXPECT_TRUE(
+      contains(error_of(case_with("s_crit = 0.01\nno_fail = [\"grips\"]\n")), "this case defines none"));
   std::string twice = text;
   twice.replace(twice.find("no_fail = \"grips\""), 17, "no_fail = [\"grips\", \"grips\"]");
   EXPECT_TRUE(contains(error_of(twice), "listed twice")) << error_of(twice);

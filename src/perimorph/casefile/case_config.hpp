@@ -256,7 +256,7 @@ struct FractureSpec {
   /// Names of [[region]]s whose bonds never fail: a bond with either end in
   /// one of their cells is kept (a no-fail zone, e.g. under a load patch).
   std::vector<std::string> no_fail;
-  SourceLocation where;      ///< the [fracture] header
+  SourceLocation where;  ///< the [fracture] header
 };
 
 struct CaseConfig {
