@@ -560,6 +560,7 @@ def main(argv):
         # diagnostic: a crack length from the damage of the two cell rows touching the plane (last VTU):
         # Σ over the columns of min(1, d / d_max) h_x, mean of the two rows (not the BENCHMARKS measure)
         a_dmg = g_dmg = e_dmg = None
+        torn = None
         vp = vtu_at(R[series[m]], R[series[m]]["increments"]) if series[m] in CV else None
         if vp is not None:
             v = read_vtu(vp)
@@ -575,6 +576,30 @@ def main(argv):
                 prof = np.bincount(ix, weights=dmg[row]) / np.maximum(np.bincount(ix), 1)
                 if prof.max() > 0:
                     lens.append(float(np.sum(np.minimum(1.0, prof / prof.max())) * hx))
+            # where the opening sits, per column (i, k) of the ligament at u_d: across the face y = crack_y (the
+            # jump of the mean u_y between the two cells' facing nodes) or through one of the two cells (their
+            # own stretch, top nodes' mean u_y − bottom nodes'), whichever is larger; by z-layer k
+            U = np.array(v["point_data"]["displacement"]["values"]).reshape(len(pts), -1)
+            hz = facts["thickness"] / MESHES[m][2]
+            torn = {}
+            below = np.abs(cc[:, 1] - (facts["crack_y"] - hy / 2)) < 1e-6 * hy
+            above = np.abs(cc[:, 1] - (facts["crack_y"] + hy / 2)) < 1e-6 * hy
+            key = lambda c: (int(np.floor((cc[c, 0] - facts["lower"][0]) / hx)), int(np.floor((cc[c, 2] - facts["lower"][2]) / hz)))
+            up = {key(c): c for c in np.where(above)[0]}
+            for c in np.where(below)[0]:
+                i, kz = key(c)
+                if cc[c, 0] < facts["precrack"] or (i, kz) not in up:
+                    continue
+                d_ = up[(i, kz)]
+                ny_b, ny_a = pts[cells[c]][:, 1], pts[cells[d_]][:, 1]
+                top_b = U[cells[c]][ny_b > facts["crack_y"] - 1e-9, 1].mean()
+                bot_b = U[cells[c]][ny_b < facts["crack_y"] - 1e-9, 1].mean()
+                top_a = U[cells[d_]][ny_a > facts["crack_y"] + 1e-9, 1].mean()
+                bot_a = U[cells[d_]][ny_a < facts["crack_y"] + 1e-9, 1].mean()
+                jump, through = bot_a - top_b, max(top_b - bot_b, top_a - bot_a)
+                t_ = torn.setdefault(kz, [0, 0])
+                t_[1] += 1
+                t_[0] += int(through > jump)
             if lens:
                 a_dmg = float(np.mean(lens))
                 g_dmg = float(CV[series[m]]["D"][-1] / (a_dmg * facts["thickness"]))
@@ -589,7 +614,8 @@ def main(argv):
             if len(np.unique(A_[sel])) >= 3:
                 g_slope = float(np.polyfit(A_[sel], D_[sel], 1)[0])
                 e_slope = abs(g_slope - g_eff) / g_eff
-        rows_gc.append({"G_slope": g_slope, "err_slope": e_slope, "a_damage": a_dmg, "G_app_damage": g_dmg, "err_damage": e_dmg, "bond_ratio": bond_ratio, "energy_per_bond_ratio": e_ratio, "crossing_bonds": n_cross,
+        rows_gc.append({"torn_by_layer": {str(k): v_ for k, v_ in sorted(torn.items())} if torn else None,
+                        "G_slope": g_slope, "err_slope": e_slope, "a_damage": a_dmg, "G_app_damage": g_dmg, "err_damage": e_dmg, "bond_ratio": bond_ratio, "energy_per_bond_ratio": e_ratio, "crossing_bonds": n_cross,
                         "mesh": m, "h": eval_fraction(m) ** -1, "elements": int(np.prod(MESHES[m])),
                         "G_eff_program": g_eff, "G_eff_plane_figure": gc[m]["actual"], "G_app_last": ga,
                         "G_app_56": ga56, "err_last": e, "err_56": e56, "err_last_continuum": ec,
@@ -781,6 +807,16 @@ def write_report(base, rep, quick, series, nis, q3, ni_mesh, series_meshes, fail
                      f"its cut test should remove them all (the cut is closed). It "
                      f"changes G_eff there by {100 * (rep['gc_independent']['ligament_with_ties'] / rep['gc_independent']['ligament'] - 1):.2f} % "
                      f"between all and none.")
+    tl = [(r["h"], r["torn_by_layer"]) for r in rep["gc_table"] if r.get("torn_by_layer")]
+    if tl:
+        notes.append("- **Where the opening sits** (last VTU, ligament columns): columns whose opening at u_d runs "
+                     "through one of the two cells next to the plane (a cell's own stretch larger than the jump "
+                     "across the face) rather than across the face, by z-layer k (0 and the last touch the free "
+                     "faces z = 0, 2δ): " + "; ".join(
+                         f"h = {h:.3g}: " + ", ".join(f"k = {k} {a}/{n}" for k, (a, n) in t.items()) for h, t in tl)
+                     + ". Such a column has no fully failed face, so `crack_area` does not count it however open "
+                     "it is: the crack measure of BENCHMARKS (fully broken element interfaces) sees only cracks "
+                     "that run along element faces.")
     shares = [(n, S[k].get("D_share_next_to_plane_56"), S[k].get("D_mean_distance_56"))
               for n, k in sorted(nis.items()) if S.get(k)]
     if shares:
