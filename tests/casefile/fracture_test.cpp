@@ -61,7 +61,17 @@ TEST(CaseFileFracture, CriticalStretchTakesDefaults) {
   EXPECT_EQ(f.rule, BreakRule::all);
   EXPECT_EQ(f.fraction, 1.0);
   EXPECT_EQ(f.max_iterations, 100);
+  EXPECT_TRUE(f.intra_cell_failure);
+  EXPECT_TRUE(f.no_fail.empty());
   EXPECT_EQ(f.where.describe(), "f.toml:13:1: key 'fracture'");
+}
+
+TEST(CaseFileFracture, IntraCellFailureIsABoolean) {
+  EXPECT_FALSE(parse_case_string(case_with("s_crit = 0.002\nintra_cell_failure = false\n"), "f.toml")
+                   .fracture.intra_cell_failure);
+  const std::string msg = error_of(case_with("s_crit = 0.002\nintra_cell_failure = \"no\"\n"));
+  EXPECT_TRUE(contains(msg, "f.toml:15:")) << msg;
+  EXPECT_TRUE(contains(msg, "fracture.intra_cell_failure")) << msg;
 }
 
 TEST(CaseFileFracture, EnergyReleaseRate) {

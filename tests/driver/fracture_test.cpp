@@ -245,8 +245,9 @@ TEST(Fracture, SameBondsFailWithOneAndTwoThreads) {
 }
 
 // [fracture] no_fail: a bond with an end in a listed region is never
-// selected; the others are selected exactly as without the option.
-TEST(Fracture, NoFailRegionKeepsItsBonds) {
+// selected; intra_cell_failure = false: no bond between two points of one
+// cell is; the others are selected exactly as without the options.
+TEST(Fracture, NoFailRegionsAndIntraCellRuleFilterTheSelection) {
   auto c = pulled_case(2, {1.0}, 1e-3);
   c.fracture.s_crit = 1e300;
   const auto plain_model = driver::build_model(c);
@@ -280,6 +281,17 @@ TEST(Fracture, NoFailRegionKeepsItsBonds) {
   for (const auto& b : selected) {
     EXPECT_FALSE(is_left(b.id.e) || is_left(b.id.f));
   }
+  // intra_cell_failure = false: the same selection less the bonds inside one cell.
+  c.fracture.no_fail.clear();
+  c.fracture.intra_cell_failure = false;
+  const auto inter = driver::BondFailure(driver::build_model(c)).select(run.displacement);
+  std::size_t intra = 0;
+  for (const auto& b : expected) intra += b.id.e == b.id.f ? 1 : 0;
+  ASSERT_GT(intra, 0u) << "no intra-cell bond over the threshold: the check would be vacuous";
+  ASSERT_EQ(inter.size(), expected.size() - intra);
+  for (const auto& b : inter) EXPECT_NE(b.id.e, b.id.f);
+  c.fracture.intra_cell_failure = true;
+  c.fracture.no_fail = {"left_half"};
   // Through the whole run: with the region covering the block nothing fails.
   left.upper = Vec3(5.0, 3.0, 0.0);
   c.regions = {left};

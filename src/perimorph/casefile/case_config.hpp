@@ -256,6 +256,12 @@ struct FractureSpec {
   /// Names of [[region]]s whose bonds never fail: a bond with either end in
   /// one of their cells is kept (a no-fail zone, e.g. under a load patch).
   std::vector<std::string> no_fail;
+  /// Whether a bond between two points of the same cell may fail. A Q1 cell
+  /// (CG or DG) cannot carry a discontinuity, so such failures only smear the
+  /// crack over the cell; with false, cracks open only between DG cells, as in
+  /// the thesis ("when DGFEM is used, cracks can propagate only at interfaces
+  /// between elements", §3.3.5).
+  bool intra_cell_failure = true;
   SourceLocation where;  ///< the [fracture] header
 };
 

@@ -58,7 +58,7 @@ void read_fracture(const Table& root, CaseConfig& c) {
     t->fail(
         "bond failure needs a [nonlocal] section: bonds exist, and break, only in the non-local "
         "(peridynamic) model that [nonlocal] defines (kernel, horizon); add it, or remove [fracture]");
-  t->check_keys({"s_crit", "G_c", "rule", "fraction", "max_iterations", "no_fail"});
+  t->check_keys({"s_crit", "G_c", "rule", "fraction", "max_iterations", "no_fail", "intra_cell_failure"});
   FractureSpec& f = c.fracture;
   f.enabled = true;
   f.where = t->where();
@@ -117,6 +117,8 @@ void read_fracture(const Table& root, CaseConfig& c) {
           n));
     f.max_iterations = n;
   }
+
+  if (auto v = t->get("intra_cell_failure")) f.intra_cell_failure = v->boolean();
 
   if (auto v = t->get("no_fail")) {
     std::vector<Value> names;

@@ -47,6 +47,8 @@ assembly::NonlocalSpace BondFailure::space() const {
 
 std::vector<assembly::StretchedBond> BondFailure::select(std::span<const double> u) const {
   std::vector<assembly::StretchedBond> over = assembly::bonds_over(space(), u, s_crit_);
+  if (!model_.config.fracture.intra_cell_failure)
+    std::erase_if(over, [](const assembly::StretchedBond& b) { return b.id.e == b.id.f; });
   if (!no_fail_.empty())
     std::erase_if(over, [&](const assembly::StretchedBond& b) {
       return no_fail_[static_cast<std::size_t>(b.id.e)] || no_fail_[static_cast<std::size_t>(b.id.f)];

@@ -42,7 +42,9 @@ class BondFailure {
 
   /// The intact bonds to break at displacement u: those with s > s_crit, or
   /// with rule = fraction those with s ≥ fraction · the largest such s;
-  /// bonds with an end in a [fracture] no_fail region are never selected.
+  /// bonds with an end in a [fracture] no_fail region, and with
+  /// intra_cell_failure = false bonds between two points of one cell, are
+  /// never selected.
   std::vector<assembly::StretchedBond> select(std::span<const double> u) const;
 
   /// Breaks `bonds` (from select at the current u): K −= their blocks; A −=
