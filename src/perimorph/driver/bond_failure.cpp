@@ -32,10 +32,10 @@ BondFailure::BondFailure(const Model& model)
       s_crit_(critical_stretch(model)),
       broken_(model.mesh.num_cells(), model.nonlocal->points.per_cell),
       cell_dissipated_(static_cast<std::size_t>(model.mesh.num_cells()), 0.0) {
-  for (const std::string& region : model.config.fracture.no_fail) {
-    if (no_fail_.empty()) no_fail_.assign(static_cast<std::size_t>(model.mesh.num_cells()), 0);
+  const auto& regions = model.config.fracture.no_fail;
+  if (!regions.empty()) no_fail_.assign(static_cast<std::size_t>(model.mesh.num_cells()), 0);
+  for (const std::string& region : regions)
     for (Index c : model.mesh.cell_sets.at(region)) no_fail_[static_cast<std::size_t>(c)] = 1;
-  }
 }
 
 assembly::NonlocalSpace BondFailure::space() const {
@@ -47,13 +47,12 @@ assembly::NonlocalSpace BondFailure::space() const {
 
 std::vector<assembly::StretchedBond> BondFailure::select(std::span<const double> u) const {
   std::vector<assembly::StretchedBond> over = assembly::bonds_over(space(), u, s_crit_);
-  if (!model_.config.fracture.intra_cell_failure)
-    std::erase_if(over, [](const assembly::StretchedBond& b) { return b.id.e == b.id.f; });
-  if (!no_fail_.empty())
-    std::erase_if(over, [&](const assembly::StretchedBond& b) {
-      return no_fail_[static_cast<std::size_t>(b.id.e)] || no_fail_[static_cast<std::size_t>(b.id.f)];
-    });
   const auto& spec = model_.config.fracture;
+  std::erase_if(over, [&](const assembly::StretchedBond& b) {
+    if (!spec.intra_cell_failure && b.id.e == b.id.f) return true;
+    return !no_fail_.empty() &&
+           (no_fail_[static_cast<std::size_t>(b.id.e)] || no_fail_[static_cast<std::size_t>(b.id.f)]);
+  });
   if (spec.rule == casefile::BreakRule::fraction && !over.empty()) {
     double smax = 0.0;
     for (const auto& b : over) smax = std::max(smax, b.stretch);
