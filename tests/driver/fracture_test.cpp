@@ -18,6 +18,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -162,6 +163,16 @@ TEST(Fracture, IncrementalDowndateEqualsReassembly) {
     ASSERT_GT(bonds.size(), 10u);
     failure.apply(bonds, K, A, rhs, bc);
     EXPECT_EQ(failure.broken().size(), bonds.size());
+    // Critical energy: each bond's ½ W ᾱ c (s_crit |ξ|)² = ½ k |ξ|⁴ s_crit²,
+    // below the energy it held (every selected bond is over s_crit).
+    double critical = 0.0, held = 0.0;
+    for (const auto& b : bonds) {
+      critical += 0.5 * b.k * std::pow(b.xi.squaredNorm(), 2) * failure.s_crit() * failure.s_crit();
+      held += b.energy;
+    }
+    EXPECT_NEAR(failure.critical_energy(), critical, 1e-12 * critical);
+    EXPECT_DOUBLE_EQ(failure.dissipated(), held);
+    EXPECT_LT(failure.critical_energy(), failure.dissipated());
     // Reference: reassembled without the failed bonds, then constrained.
     auto ref = driver::assemble_stiffness(model, &failure.broken());
     la::Vector rhs_ref(n, dim);

@@ -82,6 +82,8 @@ double BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, la:
   for (const auto& b : bonds) {
     if (!broken_.add(b.id)) continue;
     energy += b.energy;
+    const double ratio = s_crit_ / b.stretch;
+    critical_energy_ += b.energy * ratio * ratio;
     cell_dissipated_[static_cast<std::size_t>(b.id.e)] += 0.5 * b.energy;
     cell_dissipated_[static_cast<std::size_t>(b.id.f)] += 0.5 * b.energy;
     const auto nodes_e = dm.cell_nodes(b.id.e), nodes_f = dm.cell_nodes(b.id.f);

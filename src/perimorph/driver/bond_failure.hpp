@@ -57,6 +57,13 @@ class BondFailure {
 
   const bonds::BrokenBonds& broken() const { return broken_; }
   double dissipated() const { return dissipated_; }
+  /// Σ over the failed bonds of the energy each held at s = s_crit,
+  /// ½ W ᾱ c (s_crit |ξ|)²: the work that takes them to failure. It is the
+  /// per-bond energy of THEORY §5's G_c closed forms and of `perimorph gc`;
+  /// dissipated() counts each bond at the solve that found it over s_crit and
+  /// so also holds the overshoot of the load step (≥ this, equal only if every
+  /// bond failed exactly at s_crit).
+  double critical_energy() const { return critical_energy_; }
   /// Free dofs left with no bond and no local stiffness, held at zero (their
   /// row of A is otherwise zero).
   std::size_t detached_dofs() const { return detached_; }
@@ -72,6 +79,7 @@ class BondFailure {
   double s_crit_ = 0.0;
   bonds::BrokenBonds broken_;
   double dissipated_ = 0.0;
+  double critical_energy_ = 0.0;
   std::vector<double> cell_dissipated_;
   std::vector<double> initial_diagonal_;  ///< of A before any failure
   std::vector<double> prescribed_;        ///< prescribed value at load factor 1, NaN on free dofs

@@ -57,8 +57,9 @@ RunOutput::RunOutput(const Model& model, std::string directory, std::string base
        {"strain_energy", "external_work", "solver_iterations", "relative_residual", "wall_time"})
     columns.emplace_back(c);
   if (fracture_)
-    for (const char* c : {"dissipated_energy", "dissipated_increment", "released_energy", "bonds_broken",
-                          "bonds_broken_increment", "break_iterations", "crack_area", "broken_face_area"})
+    for (const char* c :
+         {"dissipated_energy", "dissipated_increment", "critical_energy", "released_energy", "bonds_broken",
+          "bonds_broken_increment", "break_iterations", "crack_area", "broken_face_area"})
       columns.emplace_back(c);
   csv_ = std::make_unique<io::CsvTable>(csv_path(), std::move(columns));
   if (fracture_)
@@ -160,7 +161,7 @@ void RunOutput::add_row(const IncrementRecord& r) {
   row.insert(row.end(), {r.strain_energy, r.external_work, static_cast<double>(r.iterations),
                          r.relative_residual, r.wall_time});
   if (fracture_)
-    row.insert(row.end(), {r.dissipated, r.dissipated_increment, r.released,
+    row.insert(row.end(), {r.dissipated, r.dissipated_increment, r.critical_energy, r.released,
                            static_cast<double>(r.bonds_broken), static_cast<double>(r.bonds_broken_increment),
                            static_cast<double>(r.break_iterations), r.crack_area, r.broken_face_area});
   csv_->add_row(row);

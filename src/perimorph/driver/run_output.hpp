@@ -25,6 +25,7 @@ struct IncrementRecord {
   // Fracture runs only (THEORY §5):
   double dissipated = 0.0;            ///< D_b: energy of every failed bond when it failed, cumulative
   double dissipated_increment = 0.0;  ///< the part of D_b from this increment
+  double critical_energy = 0.0;       ///< BondFailure::critical_energy(), cumulative
   double released = 0.0;              ///< W − U − D_b: energy released by re-equilibration after failures
   std::size_t bonds_broken = 0;       ///< failed bonds, cumulative (pre-crack cuts not counted)
   std::size_t bonds_broken_increment = 0;

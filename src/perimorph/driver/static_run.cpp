@@ -162,6 +162,7 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
       rec.bonds_broken_increment = rec.bonds_broken - before;
       rec.dissipated = failure->dissipated();
       rec.dissipated_increment = rec.dissipated - dissipated_before;
+      rec.critical_energy = failure->critical_energy();
       const CrackArea crack = failure->crack_area();
       rec.crack_area = crack.projected;
       rec.broken_face_area = crack.total;
