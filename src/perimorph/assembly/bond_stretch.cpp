@@ -9,47 +9,84 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 namespace perimorph::assembly {
 
 namespace {
 
-/// Calls visit(f, g, h, xi, r2, W ᾱ c_bond, broken) for every bond of cell e
-/// with a cell f ≥ e (g in e, h in f; g < h when f = e), the same bonds as
-/// pair_stiffness with the same c_bond, failed ones flagged.
+/// Calls visit(g, h, xi, r2, W ᾱ c_bond, broken) for every bond between cells
+/// e ≤ f (g in e, h in f; g < h when f = e), the same bonds as pair_stiffness
+/// with the same c_bond, failed ones flagged. A visit returning bool stops the
+/// pair at the first false. Returns false if a visit stopped it.
 template <int D, class Visit>
-void for_each_bond_of(const NonlocalSpace& s, Index e, Visit&& visit) {
+bool for_each_bond_of_pair(const NonlocalSpace& s, Index e, Index f, Visit&& visit) {
   const auto& pts = s.points;
   const int n = pts.per_cell;
   const bool partial = pts.partial_volume();
   const double outer = pts.bond_reach(s.kernel.horizon);
   const double delta2 = partial ? outer * outer : peridynamics::horizon_cutoff_squared(s.kernel.horizon);
-  for (Index f : s.graph.row(e)) {
-    if (f < e) continue;
-    if (pts.cell_alpha_max[static_cast<std::size_t>(e)] + pts.cell_alpha_max[static_cast<std::size_t>(f)] <=
-        0.0)
-      continue;
-    const auto broken = s.broken != nullptr ? s.broken->pair(e, f) : std::span<const std::uint32_t>{};
-    for (int g = 0; g < n; ++g) {
-      const std::size_t kg = pts.index(e, g);
-      for (int h = f == e ? g + 1 : 0; h < n; ++h) {
-        const std::size_t kh = pts.index(f, h);
-        const Vec3 xi = pts.x[kh] - pts.x[kg];
-        const double r2 = xi.squaredNorm();
-        if (r2 >= delta2 || r2 == 0.0) continue;
-        if (!s.mesh.cuts.empty() && peridynamics::bond_cut(pts.x[kg], pts.x[kh], s.mesh.cuts)) continue;
-        const double abar = 0.5 * (pts.alpha[kg] + pts.alpha[kh]);
-        if (abar == 0.0) continue;
-        const double cb =
-            partial ? peridynamics::bond_micromodulus<D>(s.kernel, xi, r2, &pts.half[kg], &pts.half[kh])
-                    : s.kernel.bond(xi, std::sqrt(r2));
-        if (cb == 0.0) continue;
-        const bool failed = !broken.empty() && std::binary_search(broken.begin(), broken.end(),
-                                                                  static_cast<std::uint32_t>(g * n + h));
-        visit(f, g, h, xi, r2, pts.weight[kg] * pts.weight[kh] * abar * cb, failed);
+  if (pts.cell_alpha_max[static_cast<std::size_t>(e)] + pts.cell_alpha_max[static_cast<std::size_t>(f)] <=
+      0.0)
+    return true;
+  const auto broken = s.broken != nullptr ? s.broken->pair(e, f) : std::span<const std::uint32_t>{};
+  for (int g = 0; g < n; ++g) {
+    const std::size_t kg = pts.index(e, g);
+    for (int h = f == e ? g + 1 : 0; h < n; ++h) {
+      const std::size_t kh = pts.index(f, h);
+      const Vec3 xi = pts.x[kh] - pts.x[kg];
+      const double r2 = xi.squaredNorm();
+      if (r2 >= delta2 || r2 == 0.0) continue;
+      if (!s.mesh.cuts.empty() && peridynamics::bond_cut(pts.x[kg], pts.x[kh], s.mesh.cuts)) continue;
+      const double abar = 0.5 * (pts.alpha[kg] + pts.alpha[kh]);
+      if (abar == 0.0) continue;
+      const double cb =
+          partial ? peridynamics::bond_micromodulus<D>(s.kernel, xi, r2, &pts.half[kg], &pts.half[kh])
+                  : s.kernel.bond(xi, std::sqrt(r2));
+      if (cb == 0.0) continue;
+      const bool failed = !broken.empty() && std::binary_search(broken.begin(), broken.end(),
+                                                                static_cast<std::uint32_t>(g * n + h));
+      if constexpr (std::is_same_v<decltype(visit(g, h, xi, r2, 0.0, false)), bool>) {
+        if (!visit(g, h, xi, r2, pts.weight[kg] * pts.weight[kh] * abar * cb, failed)) return false;
+      } else {
+        visit(g, h, xi, r2, pts.weight[kg] * pts.weight[kh] * abar * cb, failed);
       }
     }
   }
+  return true;
+}
+
+/// Calls visit(f, g, h, xi, r2, W ᾱ c_bond, broken) for every bond of cell e
+/// with a cell f ≥ e (see for_each_bond_of_pair).
+template <int D, class Visit>
+void for_each_bond_of(const NonlocalSpace& s, Index e, Visit&& visit) {
+  for (Index f : s.graph.row(e)) {
+    if (f < e) continue;
+    for_each_bond_of_pair<D>(s, e, f, [&](int g, int h, const Vec3& xi, double r2, double Wc, bool failed) {
+      visit(f, g, h, xi, r2, Wc, failed);
+    });
+  }
+}
+
+template <int D>
+bool has_intact_bond_dim(const NonlocalSpace& s, Index e, Index f) {
+  if (f < e) std::swap(e, f);
+  return !for_each_bond_of_pair<D>(s, e, f, [](int, int, const Vec3&, double, double, bool failed) {
+    return failed;  // stop at the first intact bond
+  });
+}
+
+template <int D>
+std::vector<std::array<Index, 2>> bonded_pairs_dim(const NonlocalSpace& s) {
+  const Index ncells = s.mesh.num_cells();
+  std::vector<std::vector<std::array<Index, 2>>> per_cell(static_cast<std::size_t>(ncells));
+#pragma omp parallel for schedule(dynamic, 8)
+  for (Index e = 0; e < ncells; ++e)
+    for (Index f : s.graph.row(e))
+      if (f >= e && has_intact_bond_dim<D>(s, e, f)) per_cell[static_cast<std::size_t>(e)].push_back({e, f});
+  std::vector<std::array<Index, 2>> all;
+  for (auto& v : per_cell) all.insert(all.end(), v.begin(), v.end());
+  return all;
 }
 
 template <int D>
@@ -133,6 +170,28 @@ std::vector<InterfaceBonds> interface_bonds_dim(const NonlocalSpace& s) {
 }
 
 }  // namespace
+
+bool has_intact_bond(const NonlocalSpace& space, Index e, Index f) {
+  switch (space.mesh.dim()) {
+    case 1:
+      return has_intact_bond_dim<1>(space, e, f);
+    case 2:
+      return has_intact_bond_dim<2>(space, e, f);
+    default:
+      return has_intact_bond_dim<3>(space, e, f);
+  }
+}
+
+std::vector<std::array<Index, 2>> bonded_pairs(const NonlocalSpace& space) {
+  switch (space.mesh.dim()) {
+    case 1:
+      return bonded_pairs_dim<1>(space);
+    case 2:
+      return bonded_pairs_dim<2>(space);
+    default:
+      return bonded_pairs_dim<3>(space);
+  }
+}
 
 std::vector<InterfaceBonds> interface_bonds(const NonlocalSpace& space) {
   switch (space.mesh.dim()) {

@@ -8,6 +8,7 @@
 #include "perimorph/assembly/nonlocal_assembly.hpp"
 #include "perimorph/bonds/broken_bonds.hpp"
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -35,6 +36,14 @@ struct BondWeights {
   std::vector<double> total, lost;
 };
 BondWeights point_bond_weights(const NonlocalSpace& space);
+
+/// Whether cells e and f share at least one intact bond (either order).
+/// Stops at the first one found.
+bool has_intact_bond(const NonlocalSpace& space, Index e, Index f);
+
+/// Every cell pair {e, f} (e ≤ f, e = f included) joined by at least one
+/// intact bond, sorted. Costs one bond per pair where none has failed.
+std::vector<std::array<Index, 2>> bonded_pairs(const NonlocalSpace& space);
 
 /// The bonds between each pair of face-adjacent cells of a structured mesh
 /// (cells e < f differing by one in one index), and how many have failed.

@@ -3,6 +3,7 @@
 #include "perimorph/bonds/nonlocal_points.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/dofs/dof_map.hpp"
+#include "perimorph/driver/floating_parts.hpp"
 #include "perimorph/peridynamics/pair_kernel.hpp"
 
 #include <fmt/format.h>
@@ -74,6 +75,7 @@ double BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, la:
     for (std::size_t k = 0; k < bc.dofs.size(); ++k)
       prescribed_[static_cast<std::size_t>(bc.dofs[k])] = bc.values[k];
     initial_diagonal_ = A.diagonal();
+    applied_force_ = build_external_force(model_);
   }
   const std::vector<double> ones{1.0};
   std::vector<double> block, negative, rhs_add;
@@ -149,10 +151,32 @@ double BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, la:
     A.add(one, one, spring);
   }
   if (!detached.empty()) {
-    A.finalize();
     rhs_unit.set_at(detached, 0.0);
     detached_ += detached.size();
+    held_.insert(held_.end(), detached.begin(), detached.end());
   }
+  // A cell pair that lost its last intact bond may have cut a part free
+  // (floating_parts.hpp): hold its free rigid-body modes by springs on a
+  // minimal set of its dofs, which carry no force.
+  const auto sp = space();
+  const bool separated = std::any_of(bonds.begin(), bonds.end(), [&](const assembly::StretchedBond& b) {
+    return !assembly::has_intact_bond(sp, b.id.e, b.id.f);
+  });
+  if (separated) {
+    std::vector<Index> held = held_;
+    held.insert(held.end(), bc.dofs.begin(), bc.dofs.end());
+    std::sort(held.begin(), held.end());
+    const FloatingParts parts = find_floating_parts(model_, sp, held, applied_force_);
+    for (Index d : parts.pins) {
+      const Index one[1] = {d};
+      const double spring[1] = {initial_diagonal_[static_cast<std::size_t>(d)]};
+      A.add(one, one, spring);
+    }
+    held_.insert(held_.end(), parts.pins.begin(), parts.pins.end());
+    floating_parts_ += static_cast<std::size_t>(parts.parts);
+    detached.insert(detached.end(), parts.pins.begin(), parts.pins.end());  // A changed
+  }
+  if (!detached.empty()) A.finalize();
   dissipated_ += energy;
   return energy;
 }

@@ -50,8 +50,9 @@ class BondFailure {
   /// Breaks `bonds` (from select at the current u): K −= their blocks; A −=
   /// their blocks on free rows and columns; rhs_unit[i] += B_ij g_j for free i
   /// and prescribed j (g = the prescribed values at load factor 1). Returns
-  /// the energy they held. A and K must be finalized again by the caller
-  /// (done here) before the next solve.
+  /// the energy they held. Dofs left with no stiffness, and parts cut free of
+  /// every support, are held by springs on A (no force on them). A and K are
+  /// finalized here.
   double apply(const std::vector<assembly::StretchedBond>& bonds, la::Matrix& K, la::Matrix& A,
                la::Vector& rhs_unit, const DirichletData& bc);
 
@@ -67,6 +68,10 @@ class BondFailure {
   /// Free dofs left with no bond and no local stiffness, held at zero (their
   /// row of A is otherwise zero).
   std::size_t detached_dofs() const { return detached_; }
+  /// Parts cut free by failures and held by a minimal support
+  /// (floating_parts.hpp), cumulative; apply() throws Error for one whose
+  /// applied forces do not balance.
+  std::size_t floating_parts() const { return floating_parts_; }
   /// Damage index and dissipated energy per cell, for the VTU.
   FractureFields fields() const;
   /// Crack area from the faces between adjacent cells all of whose bonds
@@ -84,7 +89,10 @@ class BondFailure {
   std::vector<double> initial_diagonal_;  ///< of A before any failure
   std::vector<double> prescribed_;        ///< prescribed value at load factor 1, NaN on free dofs
   std::size_t detached_ = 0;
-  std::vector<char> no_fail_;  ///< per cell, 1 in a no_fail region; empty when there is none
+  std::size_t floating_parts_ = 0;
+  std::vector<Index> held_;            ///< detached dofs and pins of floating parts
+  std::vector<double> applied_force_;  ///< at load factor 1
+  std::vector<char> no_fail_;          ///< per cell, 1 in a no_fail region; empty when there is none
 };
 
 }  // namespace perimorph::driver

@@ -59,7 +59,7 @@ RunOutput::RunOutput(const Model& model, std::string directory, std::string base
   if (fracture_)
     for (const char* c :
          {"dissipated_energy", "dissipated_increment", "critical_energy", "released_energy", "bonds_broken",
-          "bonds_broken_increment", "break_iterations", "crack_area", "broken_face_area"})
+          "bonds_broken_increment", "break_iterations", "crack_area", "broken_face_area", "floating_parts"})
       columns.emplace_back(c);
   csv_ = std::make_unique<io::CsvTable>(csv_path(), std::move(columns));
   if (fracture_)
@@ -163,7 +163,8 @@ void RunOutput::add_row(const IncrementRecord& r) {
   if (fracture_)
     row.insert(row.end(), {r.dissipated, r.dissipated_increment, r.critical_energy, r.released,
                            static_cast<double>(r.bonds_broken), static_cast<double>(r.bonds_broken_increment),
-                           static_cast<double>(r.break_iterations), r.crack_area, r.broken_face_area});
+                           static_cast<double>(r.break_iterations), r.crack_area, r.broken_face_area,
+                           static_cast<double>(r.floating_parts)});
   csv_->add_row(row);
 }
 

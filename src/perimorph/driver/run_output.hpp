@@ -29,9 +29,10 @@ struct IncrementRecord {
   double released = 0.0;              ///< W − U − D_b: energy released by re-equilibration after failures
   std::size_t bonds_broken = 0;       ///< failed bonds, cumulative (pre-crack cuts not counted)
   std::size_t bonds_broken_increment = 0;
-  int break_iterations = 0;       ///< solves after the first one in this increment
-  double crack_area = 0.0;        ///< BondFailure::crack_area().projected
-  double broken_face_area = 0.0;  ///< BondFailure::crack_area().total
+  int break_iterations = 0;        ///< solves after the first one in this increment
+  double crack_area = 0.0;         ///< BondFailure::crack_area().projected
+  double broken_face_area = 0.0;   ///< BondFailure::crack_area().total
+  std::size_t floating_parts = 0;  ///< parts cut free and held by a minimal support, cumulative
 };
 
 /// Per-cell fracture fields for the VTU (empty for a run without [fracture]).

@@ -166,6 +166,7 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
       const CrackArea crack = failure->crack_area();
       rec.crack_area = crack.projected;
       rec.broken_face_area = crack.total;
+      rec.floating_parts = failure->floating_parts();
     }
     std::vector<double> reaction(fint);
     for (std::size_t k = 0; k < reaction.size(); ++k) reaction[k] -= lambda * F[k];

@@ -1,0 +1,144 @@
+// Parts cut free by bond failure (floating_parts.hpp): a plate cut through
+// by failed bonds leaves its right half held only along x; the failure update
+// finds that part, holds its free mode by a minimal support, the matrix stays
+// non-singular and the support carries no force (the half moves rigidly with
+// its pulled edge). A cut-free part with an unbalanced applied force is an
+// error.
+
+#include "perimorph/assembly/bond_stretch.hpp"
+#include "perimorph/core/error.hpp"
+#include "perimorph/driver/bond_failure.hpp"
+#include "perimorph/driver/boundary_conditions.hpp"
+#include "perimorph/driver/model.hpp"
+#include "perimorph/driver/stiffness.hpp"
+#include "support/cases.hpp"
+
+#include <gtest/gtest.h>
+#include <Eigen/Dense>
+
+namespace perimorph {
+namespace {
+
+casefile::DirichletSpec fixed(const std::string& set, int component, double value = 0.0) {
+  casefile::DirichletSpec d;
+  d.set = set;
+  d.constrained[static_cast<std::size_t>(component)] = true;
+  d.value[component] = value;
+  return d;
+}
+
+/// Plate [0, 4] × [0, 2], fully non-local (DG), u_x = 0 on x = 0 and u_y = 0
+/// at the origin; the right edge pulled to u_x = 0.004, or (traction) loaded
+/// by a traction along x.
+casefile::CaseConfig plate(bool traction) {
+  auto c = testing::box_case(2, {16, 8, 1}, Vec3(4.0, 2.0, 1.0), 1.0, 0.25);
+  testing::add_nonlocal(c, casefile::KernelKind::gaussian, 0.375, 0.125, 2,
+                        casefile::Discretization::discontinuous);
+  c.alpha.value = 1.0;
+  c.materials[0].nu = std::numeric_limits<double>::quiet_NaN();
+  casefile::NodeSetSpec origin;
+  origin.name = "origin";
+  c.node_sets = {origin};
+  c.dirichlet = {fixed("xmin", 0), fixed("origin", 1)};
+  if (traction) {
+    casefile::TractionSpec t;
+    t.set = "xmax";
+    t.value = Vec3(1e-3, 0.0, 0.0);
+    c.tractions = {t};
+  } else {
+    c.dirichlet.push_back(fixed("xmax", 0, 0.004));
+  }
+  c.fracture.enabled = true;
+  c.fracture.s_crit = 1e-6;
+  return c;
+}
+
+/// Cells right of x = 2 moved by (1, 0): only the bonds across x = 2 stretch.
+std::vector<double> jump_at_middle(const driver::Model& model) {
+  const auto& dm = model.dofmap;
+  std::vector<double> u(static_cast<std::size_t>(dm.num_dofs()), 0.0);
+  for (Index c = 0; c < model.mesh.num_cells(); ++c) {
+    const auto nodes = dm.cell_nodes(c);
+    Vec3 centre = Vec3::Zero();
+    for (Index a : nodes) centre += dm.node_coordinate(a);
+    if (centre.x() / static_cast<double>(nodes.size()) > 2.0)
+      for (Index a : nodes) u[static_cast<std::size_t>(a * 2)] = 1.0;
+  }
+  return u;
+}
+
+struct Cut {
+  la::Matrix K, A;
+  la::Vector rhs;
+  driver::DirichletData bc;
+};
+
+/// Assembles, constrains and fails every bond across x = 2.
+Cut cut_plate(const driver::Model& model, driver::BondFailure& failure) {
+  auto assembled = driver::assemble_stiffness(model);
+  const auto bc = driver::build_dirichlet(model);
+  const Index n = model.dofmap.num_dofs();
+  la::Vector g(n, 2), rhs(n, 2);
+  std::vector<double> gv(static_cast<std::size_t>(n), 0.0);
+  for (std::size_t k = 0; k < bc.dofs.size(); ++k) gv[static_cast<std::size_t>(bc.dofs[k])] = bc.values[k];
+  g.assign(gv);
+  rhs.assign(driver::build_external_force(model));
+  la::Matrix A = assembled.K.duplicate();
+  A.eliminate_dirichlet(bc.dofs, g, rhs);
+  Cut out{std::move(assembled.K), std::move(A), std::move(rhs), bc};
+  const auto bonds = failure.select(jump_at_middle(model));
+  EXPECT_GT(bonds.size(), 100u);
+  failure.apply(bonds, out.K, out.A, out.rhs, out.bc);
+  return out;
+}
+
+TEST(FloatingParts, CutFreeHalfIsHeldWithoutForce) {
+  const auto model = driver::build_model(plate(false));
+  driver::BondFailure failure(model);
+  Cut cut = cut_plate(model, failure);
+  // Every bond across x = 2 failed: no cell pair across it keeps one.
+  const auto sp = failure.space();
+  for (const auto& [e, f] : assembly::bonded_pairs(sp)) {
+    const auto ce = model.mesh.cell_centroid(e), cf = model.mesh.cell_centroid(f);
+    EXPECT_FALSE((ce.x() < 2.0) != (cf.x() < 2.0)) << "cells " << e << ", " << f << " still bonded";
+  }
+  // The right half is held along x only (its pulled edge): one part, free in y.
+  EXPECT_EQ(failure.floating_parts(), 1u);
+  const Eigen::MatrixXd A = cut.A.to_dense();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A, Eigen::EigenvaluesOnly);
+  const double ratio = eig.eigenvalues().minCoeff() / eig.eigenvalues().maxCoeff();
+  std::printf("cut plate: %zu floating part(s), eigenvalue ratio of A %.3e\n", failure.floating_parts(),
+              ratio);
+  EXPECT_GT(ratio, 1e-12);
+  // Solution: the left half at rest, the right half moved rigidly by 0.004
+  // along x. A support with a force on it would bend or shift the half.
+  const std::vector<double> rhs = cut.rhs.to_std();
+  const Eigen::VectorXd u = A.ldlt().solve(Eigen::Map<const Eigen::VectorXd>(rhs.data(), A.rows()));
+  const auto& dm = model.dofmap;
+  double err = 0.0;
+  for (Index c = 0; c < model.mesh.num_cells(); ++c) {
+    const double ux = model.mesh.cell_centroid(c).x() > 2.0 ? 0.004 : 0.0;
+    for (Index a : dm.cell_nodes(c)) {
+      err = std::max(err, std::abs(u[a * 2] - ux));
+      err = std::max(err, std::abs(u[a * 2 + 1]));
+    }
+  }
+  std::printf("largest deviation from the rigid motions: %.3e (of 0.004)\n", err);
+  EXPECT_LT(err, 1e-10 * 0.004);
+}
+
+TEST(FloatingParts, UnbalancedCutFreePartIsAnError) {
+  const auto model = driver::build_model(plate(true));
+  driver::BondFailure failure(model);
+  try {
+    cut_plate(model, failure);
+    FAIL() << "a part cut free with a traction on it was accepted";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("no quasi-static equilibrium"), std::string::npos) << what;
+    EXPECT_NE(what.find("(2, 0, 0) and (4, 2, 0)"), std::string::npos) << what;
+  }
+}
+
+}  // namespace
+}  // namespace perimorph
