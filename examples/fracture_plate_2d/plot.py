@@ -33,6 +33,7 @@ def main():
     opening = [0.0] + [float(r["load_factor"]) * (top - bottom) for r in rows]
     force = [0.0] + [float(r["reaction_ymax_y"]) for r in rows]
     dissipated = [0.0] + [float(r["dissipated_energy"]) for r in rows]
+    critical = [0.0] + [float(r["critical_energy"]) for r in rows]
     work = [0.0] + [float(r["external_work"]) for r in rows]
     energy = [0.0] + [float(r["strain_energy"]) for r in rows]
     broken = [0] + [int(float(r["bonds_broken"])) for r in rows]
@@ -60,6 +61,7 @@ def main():
     ax2.plot(opening, work, "s-", label="external work W")
     ax2.plot(opening, energy, "^-", label="elastic energy U")
     ax2.plot(opening, dissipated, "o-", label="dissipated $D_b$ (failed bonds)")
+    ax2.plot(opening, critical, ":", color="C2", label="failed bonds counted at $s_{crit}$")
     ax2.set_xlabel("opening [mm]")
     ax2.set_ylabel("energy [N mm per mm thickness]")
     ax2.set_title("Energies (W − U − $D_b$ ≥ 0: released by re-equilibration)")

@@ -3,18 +3,22 @@
 // finds that part, holds its free mode by a minimal support, the matrix stays
 // non-singular and the support carries no force (the half moves rigidly with
 // its pulled edge). A cut-free part with an unbalanced applied force is an
-// error.
+// error. A mechanism the search cannot hold ends the run with a solver error
+// that says bonds have failed.
 
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/driver/bond_failure.hpp"
 #include "perimorph/driver/boundary_conditions.hpp"
 #include "perimorph/driver/model.hpp"
+#include "perimorph/driver/static_run.hpp"
 #include "perimorph/driver/stiffness.hpp"
 #include "support/cases.hpp"
 
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
+
+#include <filesystem>
 
 namespace perimorph {
 namespace {
@@ -137,6 +141,31 @@ TEST(FloatingParts, UnbalancedCutFreePartIsAnError) {
     const std::string what = e.what();
     EXPECT_NE(what.find("no quasi-static equilibrium"), std::string::npos) << what;
     EXPECT_NE(what.find("(2, 0, 0) and (4, 2, 0)"), std::string::npos) << what;
+  }
+}
+
+// Pulled by a traction far beyond failure, the plate falls apart into a
+// mechanism the part search cannot hold (bonds left only across the load).
+// The solver's failure then says that bonds have failed and what was kept.
+TEST(FloatingParts, SolverFailureAfterFailuresSaysSo) {
+  auto c = plate(true);
+  c.loading.factors = {0.25, 3.0};  // mean strain 2.5e-4, then 3e-3 > s_crit in most bonds
+  c.fracture.s_crit = 1e-3;
+  c.solver.petsc_options = "-ksp_type preonly -pc_type cholesky";
+  const auto model = driver::build_model(c);
+  driver::RunOptions options;
+  options.output_directory = (std::filesystem::temp_directory_path() / "perimorph_floating_plate").string();
+  options.quiet = true;
+  std::filesystem::remove_all(options.output_directory);
+  try {
+    driver::run_static(model, options);
+    FAIL() << "the plate fell apart under a force and the run went on";
+  } catch (const SolverError& e) {
+    const std::string what = e.what();
+    std::printf("%s\n", what.c_str());
+    EXPECT_NE(what.find("increment 2/2"), std::string::npos) << what;
+    EXPECT_NE(what.find("bonds have failed: they can leave a mechanism"), std::string::npos) << what;
+    EXPECT_NE(what.find("Results of increments 1..1"), std::string::npos) << what;
   }
 }
 

@@ -146,6 +146,15 @@ double BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, la:
     if (std::abs(diag[k]) <= 1e-12 * std::abs(d0)) detached.push_back(touched[k]);
   }
   for (Index d : detached) {
+    const double force = applied_force_[static_cast<std::size_t>(d)];
+    if (force != 0.0) {
+      const Vec3 x = dm.node_coordinate(d / dim);
+      throw Error(
+          fmt::format("bond failures have left the node at ({:g}, {:g}, {:g}) with no stiffness in "
+                      "direction {} while an applied force {:g} acts on it: there is no quasi-static "
+                      "equilibrium",
+                      x.x(), x.y(), x.z(), "xyz"[d % dim], force));
+    }
     const Index one[1] = {d};
     const double spring[1] = {initial_diagonal_[static_cast<std::size_t>(d)]};
     A.add(one, one, spring);

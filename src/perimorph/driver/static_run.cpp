@@ -108,8 +108,16 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
         summary.last_solve = solver.solve(rhs, u);
       } catch (const SolverError& e) {
         progress.finish();
-        throw SolverError(
-            fmt::format("increment {}/{} (load factor {}): {}\n{}", i + 1, total, lambda, e.what(), kept(i)));
+        const bool after_failures = failure && !failure->broken().empty();
+        throw SolverError(fmt::format(
+            "increment {}/{} (load factor {}): {}{}\n{}", i + 1, total, lambda, e.what(),
+            after_failures
+                ? fmt::format(". {} bonds have failed: they can leave a mechanism, e.g. a part held only "
+                              "by bonds normal to its motion (parts cut free completely are held "
+                              "automatically, CSV column floating_parts)",
+                              failure->broken().size())
+                : "",
+            kept(i)));
       }
     };
     solve();
@@ -145,7 +153,17 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
         ++rec.break_iterations;
         double max_stretch = 0.0;
         for (const auto& b : bonds) max_stretch = std::max(max_stretch, b.stretch);
-        const double energy_failed = failure->apply(bonds, K, A, rhs_unit, bc);
+        double energy_failed = 0.0;
+        try {
+          energy_failed = failure->apply(bonds, K, A, rhs_unit, bc);
+        } catch (const Error& e) {  // a part cut free with unbalanced loads (floating_parts.hpp)
+          progress.finish();
+          output.write_increment_vtu(model, i + 1, lambda, uv, failure->fields());
+          throw Error(fmt::format(
+              "increment {}/{} (load factor {}), bond-breaking iteration {}: {}. The displacement "
+              "before this iteration is written as increment {}; {}",
+              i + 1, total, lambda, rec.break_iterations, e.what(), i + 1, kept(i)));
+        }
         solver.set_operator(A, model.dofmap.node_coordinates(), dim);
         const std::vector<double> u_before = uv;
         solve();
