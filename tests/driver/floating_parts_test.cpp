@@ -3,8 +3,9 @@
 // finds that part, holds its free mode by a minimal support, the matrix stays
 // non-singular and the support carries no force (the half moves rigidly with
 // its pulled edge). A cut-free part with an unbalanced applied force is an
-// error. A mechanism the search cannot hold ends the run with a solver error
-// that says bonds have failed.
+// error, and so is a force on a node that failures left without stiffness. A
+// mechanism the search cannot hold ends the run with a solver error that says
+// bonds have failed.
 
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/core/error.hpp"
@@ -141,6 +142,42 @@ TEST(FloatingParts, UnbalancedCutFreePartIsAnError) {
     const std::string what = e.what();
     EXPECT_NE(what.find("no quasi-static equilibrium"), std::string::npos) << what;
     EXPECT_NE(what.find("(2, 0, 0) and (4, 2, 0)"), std::string::npos) << what;
+  }
+}
+
+// Every bond of the last column of cells with a horizontal component fails
+// (u_x = (x − 3.75)² there): its nodes keep no stiffness along x while the
+// traction pulls them along x. That is an error, not a dropped force.
+TEST(FloatingParts, ForceOnANodeLeftWithoutStiffnessIsAnError) {
+  auto c = plate(true);
+  c.fracture.s_crit = 1e-12;
+  const auto model = driver::build_model(c);
+  driver::BondFailure failure(model);
+  auto assembled = driver::assemble_stiffness(model);
+  const auto bc = driver::build_dirichlet(model);
+  const Index n = model.dofmap.num_dofs();
+  la::Vector g(n, 2), rhs(n, 2);
+  g.set_all(0.0);
+  rhs.assign(driver::build_external_force(model));
+  la::Matrix A = assembled.K.duplicate();
+  A.eliminate_dirichlet(bc.dofs, g, rhs);
+  std::vector<double> u(static_cast<std::size_t>(n), 0.0);
+  for (Index cell = 0; cell < model.mesh.num_cells(); ++cell)
+    if (model.mesh.cell_centroid(cell).x() > 3.75)
+      for (Index a : model.dofmap.cell_nodes(cell)) {
+        const double d = model.dofmap.node_coordinate(a).x() - 3.75;
+        u[static_cast<std::size_t>(a * 2)] = d * d;
+      }
+  const auto bonds = failure.select(u);
+  ASSERT_GT(bonds.size(), 50u);
+  try {
+    failure.apply(bonds, assembled.K, A, rhs, bc);
+    FAIL() << "a node left without stiffness under a force was accepted";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    std::printf("%s\n", what.c_str());
+    EXPECT_NE(what.find("with no stiffness in direction x"), std::string::npos) << what;
+    EXPECT_NE(what.find("no quasi-static equilibrium"), std::string::npos) << what;
   }
 }
 
