@@ -266,7 +266,7 @@ def write(results, output):
     w("")
     w(
         f"With the {STATE_K} most stretched bonds failed: `BondFailure::fields()` (damage index and "
-        "dissipated energy per cell, for the VTU, serial) and `crack_area()` (the CSV's crack area, from "
+        "dissipated energy per cell, for the VTU; in parallel since this commit, bit-identical for any thread count) and `crack_area()` (the CSV's crack area, from "
         "the bonds between adjacent cells). The run calls them once per increment (fields only when a VTU "
         "is written), not per bond-breaking iteration. *floating parts*: `driver::find_floating_parts` (the "
         "connected parts of the stiffness graph, one intact bond looked for per cell pair, and their free "

@@ -124,18 +124,28 @@ BondWeights point_bond_weights_dim(const NonlocalSpace& s) {
   BondWeights w;
   w.total.assign(pts.x.size(), 0.0);
   w.lost.assign(pts.x.size(), 0.0);
-  // Serial: each bond adds to two points (of possibly different cells).
-  for (Index e = 0; e < s.mesh.num_cells(); ++e)
-    for_each_bond_of<D>(s, e, [&](Index f, int g, int h, const Vec3&, double r2, double Wc, bool failed) {
-      const double v = Wc * r2;
-      const std::size_t kg = pts.index(e, g), kh = pts.index(f, h);
-      w.total[kg] += v;
-      w.total[kh] += v;
-      if (failed) {
-        w.lost[kg] += v;
-        w.lost[kh] += v;
-      }
-    });
+  // Each cell sums the bonds of its own points, visiting its graph row in
+  // order (a bond between two cells is visited from both), so every sum has
+  // a fixed order whatever the thread count, and threads write disjoint points.
+  const Index ncells = s.mesh.num_cells();
+#pragma omp parallel for schedule(dynamic, 8)
+  for (Index c = 0; c < ncells; ++c) {
+    auto add = [&](std::size_t k, double v, bool failed) {
+      w.total[k] += v;
+      if (failed) w.lost[k] += v;
+    };
+    for (Index f : s.graph.row(c)) {
+      if (f >= c)
+        for_each_bond_of_pair<D>(s, c, f, [&](int g, int h, const Vec3&, double r2, double Wc, bool failed) {
+          add(pts.index(c, g), Wc * r2, failed);
+          if (f == c) add(pts.index(c, h), Wc * r2, failed);
+        });
+      else
+        for_each_bond_of_pair<D>(s, f, c, [&](int, int h, const Vec3&, double r2, double Wc, bool failed) {
+          add(pts.index(c, h), Wc * r2, failed);
+        });
+    }
+  }
   return w;
 }
 

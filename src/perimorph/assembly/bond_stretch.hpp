@@ -31,7 +31,8 @@ std::vector<StretchedBond> bonds_over(const NonlocalSpace& space, std::span<cons
 
 /// Per non-local point: Σ over its bonds of W ᾱ c_bond |ξ|² (total) and the
 /// part carried by failed bonds (lost). Damage index = lost / total (0 where
-/// total = 0). Cut bonds count in neither.
+/// total = 0). Cut bonds count in neither. Computed in parallel, the same for
+/// any thread count.
 struct BondWeights {
   std::vector<double> total, lost;
 };
