@@ -24,13 +24,7 @@
 namespace perimorph {
 namespace {
 
-casefile::DirichletSpec fixed(const std::string& set, int component, double value = 0.0) {
-  casefile::DirichletSpec d;
-  d.set = set;
-  d.constrained[static_cast<std::size_t>(component)] = true;
-  d.value[component] = value;
-  return d;
-}
+using testing::fixed;
 
 /// Plate [0, 4] × [0, 2], fully non-local (DG), u_x = 0 on x = 0 and u_y = 0
 /// at the origin; the right edge pulled to u_x = 0.004, or (traction) loaded
@@ -72,16 +66,17 @@ std::vector<double> jump_at_middle(const driver::Model& model) {
   return u;
 }
 
-struct Cut {
+/// K, K with the constraints eliminated (A) and the right-hand side at load
+/// factor 1 (applied forces, prescribed values).
+struct System {
   la::Matrix K, A;
   la::Vector rhs;
   driver::DirichletData bc;
 };
 
-/// Assembles, constrains and fails every bond across x = 2.
-Cut cut_plate(const driver::Model& model, driver::BondFailure& failure) {
+System constrained_system(const driver::Model& model) {
   auto assembled = driver::assemble_stiffness(model);
-  const auto bc = driver::build_dirichlet(model);
+  auto bc = driver::build_dirichlet(model);
   const Index n = model.dofmap.num_dofs();
   la::Vector g(n, 2), rhs(n, 2);
   std::vector<double> gv(static_cast<std::size_t>(n), 0.0);
@@ -90,7 +85,12 @@ Cut cut_plate(const driver::Model& model, driver::BondFailure& failure) {
   rhs.assign(driver::build_external_force(model));
   la::Matrix A = assembled.K.duplicate();
   A.eliminate_dirichlet(bc.dofs, g, rhs);
-  Cut out{std::move(assembled.K), std::move(A), std::move(rhs), bc};
+  return {std::move(assembled.K), std::move(A), std::move(rhs), std::move(bc)};
+}
+
+/// Assembles, constrains and fails every bond across x = 2.
+System cut_plate(const driver::Model& model, driver::BondFailure& failure) {
+  System out = constrained_system(model);
   const auto bonds = failure.select(jump_at_middle(model));
   EXPECT_GT(bonds.size(), 100u);
   failure.apply(bonds, out.K, out.A, out.rhs, out.bc);
@@ -100,7 +100,7 @@ Cut cut_plate(const driver::Model& model, driver::BondFailure& failure) {
 TEST(FloatingParts, CutFreeHalfIsHeldWithoutForce) {
   const auto model = driver::build_model(plate(false));
   driver::BondFailure failure(model);
-  Cut cut = cut_plate(model, failure);
+  System cut = cut_plate(model, failure);
   // Every bond across x = 2 failed: no cell pair across it keeps one.
   const auto sp = failure.space();
   for (const auto& [e, f] : assembly::bonded_pairs(sp)) {
@@ -153,15 +153,8 @@ TEST(FloatingParts, ForceOnANodeLeftWithoutStiffnessIsAnError) {
   c.fracture.s_crit = 1e-12;
   const auto model = driver::build_model(c);
   driver::BondFailure failure(model);
-  auto assembled = driver::assemble_stiffness(model);
-  const auto bc = driver::build_dirichlet(model);
-  const Index n = model.dofmap.num_dofs();
-  la::Vector g(n, 2), rhs(n, 2);
-  g.set_all(0.0);
-  rhs.assign(driver::build_external_force(model));
-  la::Matrix A = assembled.K.duplicate();
-  A.eliminate_dirichlet(bc.dofs, g, rhs);
-  std::vector<double> u(static_cast<std::size_t>(n), 0.0);
+  System sys = constrained_system(model);
+  std::vector<double> u(static_cast<std::size_t>(model.dofmap.num_dofs()), 0.0);
   for (Index cell = 0; cell < model.mesh.num_cells(); ++cell)
     if (model.mesh.cell_centroid(cell).x() > 3.75)
       for (Index a : model.dofmap.cell_nodes(cell)) {
@@ -171,7 +164,7 @@ TEST(FloatingParts, ForceOnANodeLeftWithoutStiffnessIsAnError) {
   const auto bonds = failure.select(u);
   ASSERT_GT(bonds.size(), 50u);
   try {
-    failure.apply(bonds, assembled.K, A, rhs, bc);
+    failure.apply(bonds, sys.K, sys.A, sys.rhs, sys.bc);
     FAIL() << "a node left without stiffness under a force was accepted";
   } catch (const Error& e) {
     const std::string what = e.what();

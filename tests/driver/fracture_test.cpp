@@ -25,18 +25,12 @@
 namespace perimorph {
 namespace {
 
+using testing::fixed;
+
 std::string scratch_dir(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() / ("perimorph_fracture_" + name);
   std::filesystem::remove_all(dir);
   return dir.string();
-}
-
-casefile::DirichletSpec fixed(const std::string& set, int component, double value = 0.0) {
-  casefile::DirichletSpec d;
-  d.set = set;
-  d.constrained[static_cast<std::size_t>(component)] = true;
-  d.value[component] = value;
-  return d;
 }
 
 /// A bar [0, 20] (1D), a plate [0, 4] × [0, 2] (2D) or a block [0, 4] × [0, 2]

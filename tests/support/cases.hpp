@@ -5,6 +5,7 @@
 #include "perimorph/casefile/case_config.hpp"
 
 #include <limits>
+#include <string>
 
 namespace perimorph::testing {
 
@@ -20,6 +21,15 @@ inline casefile::CaseConfig box_case(int dim, std::array<Index, 3> cells, Vec3 e
   c.materials = {m};
   c.output.vtu = false;
   return c;
+}
+
+/// A [[dirichlet]] entry holding one component of a set at `value`.
+inline casefile::DirichletSpec fixed(const std::string& set, int component, double value = 0.0) {
+  casefile::DirichletSpec d;
+  d.set = set;
+  d.constrained[static_cast<std::size_t>(component)] = true;
+  d.value[component] = value;
+  return d;
 }
 
 /// Adds a [nonlocal] section.

@@ -140,6 +140,12 @@ double BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, la:
   std::sort(touched.begin(), touched.end());
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
   const std::vector<double> diag = A.diagonal_at(touched);
+  // Holds dof d by a spring of its initial stiffness on A's diagonal.
+  auto hold = [&](Index d) {
+    const Index one[1] = {d};
+    const double spring[1] = {initial_diagonal_[static_cast<std::size_t>(d)]};
+    A.add(one, one, spring);
+  };
   std::vector<Index> detached;
   for (std::size_t k = 0; k < touched.size(); ++k) {
     const double d0 = initial_diagonal_[static_cast<std::size_t>(touched[k])];
@@ -155,9 +161,7 @@ double BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, la:
                       "equilibrium",
                       x.x(), x.y(), x.z(), "xyz"[d % dim], force));
     }
-    const Index one[1] = {d};
-    const double spring[1] = {initial_diagonal_[static_cast<std::size_t>(d)]};
-    A.add(one, one, spring);
+    hold(d);
   }
   if (!detached.empty()) {
     rhs_unit.set_at(detached, 0.0);
@@ -167,20 +171,20 @@ double BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, la:
   // A cell pair that lost its last intact bond may have cut a part free
   // (floating_parts.hpp): hold its free rigid-body modes by springs on a
   // minimal set of its dofs, which carry no force.
+  // (select returns the bonds grouped by cell pair: each pair is looked at once.)
   const auto sp = space();
-  const bool separated = std::any_of(bonds.begin(), bonds.end(), [&](const assembly::StretchedBond& b) {
-    return !assembly::has_intact_bond(sp, b.id.e, b.id.f);
-  });
+  bool separated = false;
+  for (std::size_t k = 0; k < bonds.size() && !separated; ++k) {
+    const auto& id = bonds[k].id;
+    if (k > 0 && bonds[k - 1].id.e == id.e && bonds[k - 1].id.f == id.f) continue;
+    separated = !assembly::has_intact_bond(sp, id.e, id.f);
+  }
   if (separated) {
     std::vector<Index> held = held_;
     held.insert(held.end(), bc.dofs.begin(), bc.dofs.end());
     std::sort(held.begin(), held.end());
     const FloatingParts parts = find_floating_parts(model_, sp, held, applied_force_);
-    for (Index d : parts.pins) {
-      const Index one[1] = {d};
-      const double spring[1] = {initial_diagonal_[static_cast<std::size_t>(d)]};
-      A.add(one, one, spring);
-    }
+    for (Index d : parts.pins) hold(d);
     held_.insert(held_.end(), parts.pins.begin(), parts.pins.end());
     floating_parts_ += static_cast<std::size_t>(parts.parts);
     detached.insert(detached.end(), parts.pins.begin(), parts.pins.end());  // A changed
