@@ -8,6 +8,7 @@
 //   perimorph gc CASE --point X Y Z --normal NX NY NZ [--s-crit S]
 
 #include "perimorph/casefile/parse_case.hpp"
+#include "perimorph/casefile/suggest.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/driver/effective_gc.hpp"
 #include "perimorph/driver/ghost_forces.hpp"
@@ -19,6 +20,7 @@
 #include <fmt/ranges.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -27,7 +29,24 @@
 #include <string>
 #include <vector>
 
+const char* perimorph_build_commit();  // generated at build time (cmake/write_version.cmake)
+
 namespace {
+
+/// A first argument that is neither an option nor a command: name it, suggest
+/// the closest command and list them (CLI11 alone reports it as a missing
+/// command). Returns the message, or "" when the first argument is fine.
+std::string unknown_command(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return {};
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    names.push_back(sub->get_name());
+  const std::string word = argv[1];
+  if (std::find(names.begin(), names.end(), word) != names.end()) return {};
+  const std::string near = perimorph::casefile::closest_match(word, names);
+  return fmt::format("unknown command '{}'{}; the commands are {} (perimorph --help)", word,
+                     near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near), fmt::join(names, ", "));
+}
 
 int check(const std::string& path) {
   const auto config = perimorph::casefile::parse_case_file(path);
@@ -263,6 +282,8 @@ int main(int argc, char** argv) {
       "Case-file format: docs/case-file.md. PETSc options (e.g. -ksp_type preonly -pc_type cholesky) may\n"
       "follow the case file of `run`; they override the case's [solver] petsc_options."};
   app.require_subcommand(1);
+  app.set_version_flag("--version", fmt::format("perimorph {} (commit {})", PERIMORPH_VERSION,
+                                                perimorph_build_commit()));
 
   std::string case_path;
   auto* check_cmd =
@@ -319,6 +340,10 @@ int main(int argc, char** argv) {
       "Any crack plane of a box: its area inside the box is computed for any normal (a polygon in 3D, a "
       "segment times the thickness in 2D).");
 
+  if (const std::string message = unknown_command(app, argc, argv); !message.empty()) {
+    fmt::print(stderr, "error: {}\n", message);
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

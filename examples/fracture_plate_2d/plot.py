@@ -33,7 +33,8 @@ def main():
     opening = [0.0] + [float(r["load_factor"]) * (top - bottom) for r in rows]
     force = [0.0] + [float(r["reaction_ymax_y"]) for r in rows]
     dissipated = [0.0] + [float(r["dissipated_energy"]) for r in rows]
-    critical = [0.0] + [float(r["critical_energy"]) for r in rows]
+    overshoot = [0.0] + [float(r["overshoot_energy"]) for r in rows]
+    released = [0.0] + [float(r["released_energy"]) for r in rows]
     work = [0.0] + [float(r["external_work"]) for r in rows]
     energy = [0.0] + [float(r["strain_energy"]) for r in rows]
     broken = [0] + [int(float(r["bonds_broken"])) for r in rows]
@@ -60,11 +61,12 @@ def main():
     ax1b.set_ylabel("crack length [mm] (fully failed faces, projected)", color="C3")
     ax2.plot(opening, work, "s-", label="external work W")
     ax2.plot(opening, energy, "^-", label="elastic energy U")
-    ax2.plot(opening, dissipated, "o-", label="dissipated $D_b$ (failed bonds)")
-    ax2.plot(opening, critical, ":", color="C2", label="failed bonds counted at $s_{crit}$")
+    ax2.plot(opening, dissipated, "o-", label="dissipated D (failed bonds at $s_{crit}$)")
+    ax2.plot(opening, overshoot, ":", color="C2", label="overshoot (failed bonds beyond $s_{crit}$)")
+    ax2.plot(opening, released, "--", color="C4", label="released W − U − D − overshoot")
     ax2.set_xlabel("opening [mm]")
     ax2.set_ylabel("energy [N mm per mm thickness]")
-    ax2.set_title("Energies (W − U − $D_b$ ≥ 0: released by re-equilibration)")
+    ax2.set_title("Energies (THEORY §5: W − U − D ≥ 0)")
     ax2.legend()
     ax2.grid(alpha=0.3)
     coll = PolyCollection(polys, array=damage, cmap="magma", edgecolors="face", linewidths=0.2)
@@ -78,9 +80,9 @@ def main():
     path = os.path.join(out, "fracture_plate.png")
     fig.savefig(path, dpi=130)
     print(f"wrote {path}")
-    print("opening [mm]  R_y          W            U            D_b          bonds failed  crack [mm]")
-    for row in zip(opening, force, work, energy, dissipated, broken, crack):
-        print("{:11.5f}  {:11.5g}  {:11.5g}  {:11.5g}  {:11.5g}  {:12d}  {:9.4g}".format(*row))
+    print("opening [mm]  R_y          W            U            D            overshoot    bonds failed  crack [mm]")
+    for row in zip(opening, force, work, energy, dissipated, overshoot, broken, crack):
+        print("{:11.5f}  {:11.5g}  {:11.5g}  {:11.5g}  {:11.5g}  {:11.5g}  {:12d}  {:9.4g}".format(*row))
 
 
 if __name__ == "__main__":

@@ -155,18 +155,21 @@ TEST(Fracture, IncrementalDowndateEqualsReassembly) {
     driver::BondFailure failure(model);
     const auto bonds = failure.select(u);
     ASSERT_GT(bonds.size(), 10u);
-    failure.apply(bonds, K, A, rhs, bc);
+    const driver::FailureEnergy energy = failure.apply(bonds, K, A, rhs, bc);
     EXPECT_EQ(failure.broken().size(), bonds.size());
-    // Critical energy: each bond's ½ W ᾱ c (s_crit |ξ|)² = ½ k |ξ|⁴ s_crit²,
-    // below the energy it held (every selected bond is over s_crit).
+    // Dissipated energy (THEORY §5): each bond's ½ W ᾱ c (s_crit |ξ|)² =
+    // ½ k |ξ|⁴ s_crit²; the overshoot is what it held beyond that (> 0: every
+    // selected bond is over s_crit), and the two add up to the energy held.
     double critical = 0.0, held = 0.0;
     for (const auto& b : bonds) {
       critical += 0.5 * b.k * std::pow(b.xi.squaredNorm(), 2) * failure.s_crit() * failure.s_crit();
       held += b.energy;
     }
-    EXPECT_NEAR(failure.critical_energy(), critical, 1e-12 * critical);
-    EXPECT_DOUBLE_EQ(failure.dissipated(), held);
-    EXPECT_LT(failure.critical_energy(), failure.dissipated());
+    EXPECT_NEAR(failure.dissipated(), critical, 1e-12 * critical);
+    EXPECT_NEAR(failure.dissipated() + failure.overshoot(), held, 1e-12 * held);
+    EXPECT_GT(failure.overshoot(), 0.0);
+    EXPECT_EQ(energy.dissipated, failure.dissipated());
+    EXPECT_EQ(energy.overshoot, failure.overshoot());
     // Reference: reassembled without the failed bonds, then constrained.
     auto ref = driver::assemble_stiffness(model, &failure.broken());
     la::Vector rhs_ref(n, dim);
@@ -218,13 +221,14 @@ TEST(Fracture, FailureStartsAtThePredictedLoad) {
     const auto run = driver::run_static(model, {scratch_dir("predicted"), true});
     ASSERT_EQ(run.history.size(), 4u);
     for (const auto& r : run.history)
-      std::printf("  load %.4f: %zu bonds failed (%d iterations), reaction %.4e, W %.6e, U %.6e, D_b %.6e\n",
+      std::printf("  load %.4f: %zu bonds failed (%d iterations), reaction %.4e, W %.6e, U %.6e, D %.6e\n",
                   r.load_factor, r.bonds_broken, r.break_iterations, r.reactions.back().x(), r.external_work,
                   r.strain_energy, r.dissipated);
     EXPECT_EQ(run.history[0].bonds_broken, 0u);
     EXPECT_EQ(run.history[1].bonds_broken, 0u);
     EXPECT_GT(run.history[2].bonds_broken, 0u);
-    // Energy bookkeeping: W = U before any failure, W − U ≥ D_b after.
+    // Energy bookkeeping: W = U before any failure; after, W − U − D ≥ 0
+    // (D at s_crit) and W − U − D − overshoot ≥ 0 (released_energy).
     for (int i = 0; i < 2; ++i) {
       const auto& r = run.history[static_cast<std::size_t>(i)];
       EXPECT_NEAR(r.external_work, r.strain_energy, 1e-9 * r.strain_energy);
@@ -233,7 +237,12 @@ TEST(Fracture, FailureStartsAtThePredictedLoad) {
     for (std::size_t i = 2; i < run.history.size(); ++i) {
       const auto& r = run.history[i];
       EXPECT_GT(r.dissipated, 0.0);
-      EXPECT_GE(r.released, -1e-9 * r.external_work) << "W - U - D_b at increment " << i + 1;
+      EXPECT_GE(r.overshoot, 0.0);
+      EXPECT_GE(r.external_work - r.strain_energy - r.dissipated, -1e-9 * r.external_work)
+          << "W - U - D at increment " << i + 1;
+      EXPECT_GE(r.released, -1e-9 * r.external_work) << "W - U - D - overshoot at increment " << i + 1;
+      EXPECT_NEAR(r.released, r.external_work - r.strain_energy - r.dissipated - r.overshoot,
+                  1e-12 * r.external_work);
       EXPECT_GE(r.bonds_broken, run.history[i - 1].bonds_broken);  // never heal
     }
   }

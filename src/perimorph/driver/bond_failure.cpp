@@ -63,7 +63,7 @@ std::vector<assembly::StretchedBond> BondFailure::select(std::span<const double>
   return over;
 }
 
-double BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, la::Matrix& K, la::Matrix& A,
+FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, la::Matrix& K, la::Matrix& A,
                           la::Vector& rhs_unit, const DirichletData& bc) {
   const int dim = model_.dim();
   const auto& pts = model_.nonlocal->points;
@@ -80,14 +80,16 @@ double BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, la:
   const std::vector<double> ones{1.0};
   std::vector<double> block, negative, rhs_add;
   std::vector<Index> dofs, free_dofs, touched, rhs_at;
-  double energy = 0.0;
+  FailureEnergy energy;
   for (const auto& b : bonds) {
     if (!broken_.add(b.id)) continue;
-    energy += b.energy;
+    // ½ W ᾱ c η² with η = s |ξ|: the energy at s_crit is (s_crit / s)² of it.
     const double ratio = s_crit_ / b.stretch;
-    critical_energy_ += b.energy * ratio * ratio;
-    cell_dissipated_[static_cast<std::size_t>(b.id.e)] += 0.5 * b.energy;
-    cell_dissipated_[static_cast<std::size_t>(b.id.f)] += 0.5 * b.energy;
+    const double critical = b.energy * ratio * ratio;
+    energy.dissipated += critical;
+    energy.overshoot += b.energy - critical;
+    cell_dissipated_[static_cast<std::size_t>(b.id.e)] += 0.5 * critical;
+    cell_dissipated_[static_cast<std::size_t>(b.id.f)] += 0.5 * critical;
     const auto nodes_e = dm.cell_nodes(b.id.e), nodes_f = dm.cell_nodes(b.id.f);
     const bool same = b.id.e == b.id.f;
     const int nE = static_cast<int>(nodes_e.size()), nF = static_cast<int>(nodes_f.size());
@@ -190,7 +192,8 @@ double BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, la:
     detached.insert(detached.end(), parts.pins.begin(), parts.pins.end());  // A changed
   }
   if (!detached.empty()) A.finalize();
-  dissipated_ += energy;
+  energy_.dissipated += energy.dissipated;
+  energy_.overshoot += energy.overshoot;
   return energy;
 }
 

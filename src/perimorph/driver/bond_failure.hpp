@@ -50,21 +50,20 @@ class BondFailure {
   /// Breaks `bonds` (from select at the current u): K −= their blocks; A −=
   /// their blocks on free rows and columns; rhs_unit[i] += B_ij g_j for free i
   /// and prescribed j (g = the prescribed values at load factor 1). Returns
-  /// the energy they held. Dofs left with no stiffness, and parts cut free of
+  /// their energy, at s_crit and beyond it. Dofs left with no stiffness, and parts cut free of
   /// every support, are held by springs on A (no force on them). A and K are
   /// finalized here.
-  double apply(const std::vector<assembly::StretchedBond>& bonds, la::Matrix& K, la::Matrix& A,
+  FailureEnergy apply(const std::vector<assembly::StretchedBond>& bonds, la::Matrix& K, la::Matrix& A,
                la::Vector& rhs_unit, const DirichletData& bc);
 
   const bonds::BrokenBonds& broken() const { return broken_; }
-  double dissipated() const { return dissipated_; }
-  /// Σ over the failed bonds of the energy each held at s = s_crit,
-  /// ½ W ᾱ c (s_crit |ξ|)²: the work that takes them to failure. It is the
-  /// per-bond energy of THEORY §5's G_c closed forms and of `perimorph gc`;
-  /// dissipated() counts each bond at the solve that found it over s_crit and
-  /// so also holds the overshoot of the load step (≥ this, equal only if every
-  /// bond failed exactly at s_crit).
-  double critical_energy() const { return critical_energy_; }
+  /// D of THEORY §5: Σ over the failed bonds of the energy each held at
+  /// s = s_crit, ½ W ᾱ c (s_crit |ξ|)², cumulative (FailureEnergy::dissipated).
+  double dissipated() const { return energy_.dissipated; }
+  /// Σ over the failed bonds of the energy each held beyond s_crit at the
+  /// solve that found it over the criterion, cumulative: the overshoot of the
+  /// finite load steps (FailureEnergy::overshoot).
+  double overshoot() const { return energy_.overshoot; }
   /// Free dofs left with no bond and no local stiffness, held at zero (their
   /// row of A is otherwise zero).
   std::size_t detached_dofs() const { return detached_; }
@@ -72,7 +71,7 @@ class BondFailure {
   /// (floating_parts.hpp), cumulative; apply() throws Error for one whose
   /// applied forces do not balance.
   std::size_t floating_parts() const { return floating_parts_; }
-  /// Damage index and dissipated energy per cell, for the VTU.
+  /// Damage index and dissipated energy (at s_crit) per cell, for the VTU.
   FractureFields fields() const;
   /// Crack area from the faces between adjacent cells all of whose bonds
   /// have failed (structured meshes; 2D: length × thickness; 1D: the
@@ -83,8 +82,7 @@ class BondFailure {
   const Model& model_;
   double s_crit_ = 0.0;
   bonds::BrokenBonds broken_;
-  double dissipated_ = 0.0;
-  double critical_energy_ = 0.0;
+  FailureEnergy energy_;
   std::vector<double> cell_dissipated_;
   std::vector<double> initial_diagonal_;  ///< of A before any failure
   std::vector<double> prescribed_;        ///< prescribed value at load factor 1, NaN on free dofs

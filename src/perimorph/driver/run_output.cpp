@@ -58,14 +58,14 @@ RunOutput::RunOutput(const Model& model, std::string directory, std::string base
     columns.emplace_back(c);
   if (fracture_)
     for (const char* c :
-         {"dissipated_energy", "dissipated_increment", "critical_energy", "released_energy", "bonds_broken",
+         {"dissipated_energy", "dissipated_increment", "overshoot_energy", "released_energy", "bonds_broken",
           "bonds_broken_increment", "break_iterations", "crack_area", "broken_face_area", "floating_parts"})
       columns.emplace_back(c);
   csv_ = std::make_unique<io::CsvTable>(csv_path(), std::move(columns));
   if (fracture_)
     failures_csv_ = std::make_unique<io::CsvTable>(
         (std::filesystem::path(directory_) / (basename_ + "_failures.csv")).string(),
-        std::vector<std::string>{"increment", "iteration", "bonds_failed", "energy_failed",
+        std::vector<std::string>{"increment", "iteration", "bonds_failed", "dissipated_energy", "overshoot_energy",
                                  "max_stretch_ratio", "solver_iterations"});
   if (model.config.output.vtu) pvd_ = std::make_unique<io::PvdCollection>(pvd_path());
 }
@@ -161,18 +161,18 @@ void RunOutput::add_row(const IncrementRecord& r) {
   row.insert(row.end(), {r.strain_energy, r.external_work, static_cast<double>(r.iterations),
                          r.relative_residual, r.wall_time});
   if (fracture_)
-    row.insert(row.end(), {r.dissipated, r.dissipated_increment, r.critical_energy, r.released,
+    row.insert(row.end(), {r.dissipated, r.dissipated_increment, r.overshoot, r.released,
                            static_cast<double>(r.bonds_broken), static_cast<double>(r.bonds_broken_increment),
                            static_cast<double>(r.break_iterations), r.crack_area, r.broken_face_area,
                            static_cast<double>(r.floating_parts)});
   csv_->add_row(row);
 }
 
-void RunOutput::add_failure_row(int increment, int iteration, std::size_t bonds, double energy,
+void RunOutput::add_failure_row(int increment, int iteration, std::size_t bonds, const FailureEnergy& energy,
                                 double max_ratio, int solver_iterations) {
   if (!failures_csv_) return;
   failures_csv_->add_row({static_cast<double>(increment), static_cast<double>(iteration),
-                          static_cast<double>(bonds), energy, max_ratio,
+                          static_cast<double>(bonds), energy.dissipated, energy.overshoot, max_ratio,
                           static_cast<double>(solver_iterations)});
 }
 

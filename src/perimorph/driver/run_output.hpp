@@ -23,10 +23,10 @@ struct IncrementRecord {
   double relative_residual = 0.0;
   double wall_time = 0.0;  ///< seconds since the start of the run
   // Fracture runs only (THEORY §5):
-  double dissipated = 0.0;            ///< D_b: energy of every failed bond when it failed, cumulative
-  double dissipated_increment = 0.0;  ///< the part of D_b from this increment
-  double critical_energy = 0.0;       ///< BondFailure::critical_energy(), cumulative
-  double released = 0.0;              ///< W − U − D_b: energy released by re-equilibration after failures
+  double dissipated = 0.0;            ///< D: every failed bond's energy at s_crit, cumulative (THEORY §5)
+  double dissipated_increment = 0.0;  ///< the part of D from this increment
+  double overshoot = 0.0;             ///< energy the failed bonds held beyond s_crit, cumulative
+  double released = 0.0;              ///< W − U − D − overshoot: released by re-equilibration after failures
   std::size_t bonds_broken = 0;       ///< failed bonds, cumulative (pre-crack cuts not counted)
   std::size_t bonds_broken_increment = 0;
   int break_iterations = 0;        ///< solves after the first one in this increment
@@ -35,10 +35,19 @@ struct IncrementRecord {
   std::size_t floating_parts = 0;  ///< parts cut free and held by a minimal support, cumulative
 };
 
+/// The energy of bonds broken by one apply() (THEORY §5): `dissipated` counts
+/// each at the critical stretch, ½ W ᾱ c (s_crit |ξ|)² (the per-bond energy of
+/// the G_c closed forms and of `perimorph gc`); `overshoot` is what they held
+/// beyond it at the solve that found them over s_crit (≥ 0; it vanishes as the
+/// load increments shrink).
+struct FailureEnergy {
+  double dissipated = 0.0, overshoot = 0.0;
+};
+
 /// Per-cell fracture fields for the VTU (empty for a run without [fracture]).
 struct FractureFields {
   std::vector<double> damage;      ///< fraction of bond weight lost, mean over the cell's points
-  std::vector<double> dissipated;  ///< energy of the failed bonds, half to each end's cell
+  std::vector<double> dissipated;  ///< energy of the failed bonds at s_crit, half to each end's cell
 };
 
 class RunOutput {
@@ -52,10 +61,10 @@ class RunOutput {
                            const FractureFields& fracture = {});
   void add_row(const IncrementRecord& r);
   /// Fracture runs: one row per bond-breaking iteration in BASENAME_failures.csv
-  /// (increment, iteration, bonds failed, their energy, the largest s/s_crit,
-  /// Krylov iterations of the re-solve).
-  void add_failure_row(int increment, int iteration, std::size_t bonds, double energy, double max_ratio,
-                       int solver_iterations);
+  /// (increment, iteration, bonds failed, their energy at s_crit and beyond,
+  /// the largest s/s_crit, Krylov iterations of the re-solve).
+  void add_failure_row(int increment, int iteration, std::size_t bonds, const FailureEnergy& energy,
+                       double max_ratio, int solver_iterations);
 
   const std::string& directory() const { return directory_; }
   std::string csv_path() const;

@@ -153,7 +153,7 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
         ++rec.break_iterations;
         double max_stretch = 0.0;
         for (const auto& b : bonds) max_stretch = std::max(max_stretch, b.stretch);
-        double energy_failed = 0.0;
+        FailureEnergy energy_failed;
         try {
           energy_failed = failure->apply(bonds, K, A, rhs_unit, bc);
         } catch (const Error& e) {  // a part cut free with unbalanced loads (floating_parts.hpp)
@@ -180,7 +180,7 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
       rec.bonds_broken_increment = rec.bonds_broken - before;
       rec.dissipated = failure->dissipated();
       rec.dissipated_increment = rec.dissipated - dissipated_before;
-      rec.critical_energy = failure->critical_energy();
+      rec.overshoot = failure->overshoot();
       const CrackArea crack = failure->crack_area();
       rec.crack_area = crack.projected;
       rec.broken_face_area = crack.total;
@@ -201,7 +201,7 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
     rec.iterations = summary.last_solve.iterations;
     rec.relative_residual = summary.last_solve.relative_residual;
     rec.wall_time = std::chrono::duration<double>(clock::now() - start).count();
-    rec.released = failure ? work - energy - rec.dissipated : 0.0;
+    rec.released = failure ? work - energy - rec.dissipated - rec.overshoot : 0.0;
     output.add_row(rec);
     const int every = config.output.every;
     if ((i + 1) % every == 0 || i + 1 == total)
