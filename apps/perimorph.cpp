@@ -282,8 +282,8 @@ int main(int argc, char** argv) {
       "Case-file format: docs/case-file.md. PETSc options (e.g. -ksp_type preonly -pc_type cholesky) may\n"
       "follow the case file of `run`; they override the case's [solver] petsc_options."};
   app.require_subcommand(1);
-  app.set_version_flag("--version", fmt::format("perimorph {} (commit {})", PERIMORPH_VERSION,
-                                                perimorph_build_commit()));
+  app.set_version_flag("--version",
+                       fmt::format("perimorph {} (commit {})", PERIMORPH_VERSION, perimorph_build_commit()));
 
   std::string case_path;
   auto* check_cmd =

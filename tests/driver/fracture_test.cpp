@@ -2,8 +2,8 @@
 // incremental downdate of K, A and the right-hand side equals a reassembly
 // without the failed bonds; a bar and a block start to fail at the load the
 // critical stretch predicts; the energy bookkeeping W = U before failure and
-// W − U ≥ D_b after; failed bonds never heal; the same bonds fail with 1 and 2
-// threads.
+// W − U − D ≥ 0 after (D at s_crit); failed bonds never heal; the same bonds
+// fail with 1 and 2 threads; the failed-bonds file adds up to the CSV columns.
 
 #include "perimorph/core/error.hpp"
 #include "perimorph/driver/bond_failure.hpp"
@@ -21,6 +21,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
 
 namespace perimorph {
 namespace {
@@ -337,6 +340,67 @@ TEST(Fracture, IterationCapStopsWithAMessageAndKeepsResults) {
     EXPECT_NE(msg.find("max_iterations"), std::string::npos) << msg;
   }
   EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(dir) / "test.csv"));
+}
+
+}  // namespace
+}  // namespace perimorph
+
+namespace perimorph {
+namespace {
+
+/// Rows of a numeric CSV written by io::CsvTable, by column name.
+std::vector<std::map<std::string, double>> read_rows(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  for (std::stringstream ss(line); std::getline(ss, line, ',');) names.push_back(line);
+  std::vector<std::map<std::string, double>> rows;
+  while (std::getline(in, line)) {
+    std::map<std::string, double> row;
+    std::stringstream ss(line);
+    for (const auto& n : names) {
+      std::string v;
+      std::getline(ss, v, ',');
+      row[n] = std::stod(v);
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// [output] failed_bonds: one row per failed bond, over s_crit, shorter than
+// the horizon's reach; the rows add up to the run's failed-bond count and to
+// its dissipated and overshoot energies (THEORY §5).
+TEST(Fracture, FailedBondsFileAddsUpToTheEnergyColumns) {
+  for (int dim : {2, 3}) {
+    SCOPED_TRACE(::testing::Message() << dim << "D");
+    auto c = pulled_case(dim, {0.8, 1.05, 1.2, 1.4}, 1e-3);
+    c.output.failed_bonds = true;
+    c.output.basename = "pulled";
+    const auto model = driver::build_model(c);
+    const std::string dir = scratch_dir("failed_bonds" + std::to_string(dim));
+    const auto run = driver::run_static(model, {dir, true});
+    const auto& last = run.history.back();
+    ASSERT_GT(last.bonds_broken, 0u) << "no bond failed: the test would be vacuous";
+    const auto rows = read_rows((std::filesystem::path(dir) / "pulled_failed_bonds.csv").string());
+    ASSERT_EQ(rows.size(), last.bonds_broken);
+    double dissipated = 0.0, overshoot = 0.0;
+    const double reach = model.nonlocal->points.bond_reach(model.nonlocal->kernel.horizon);
+    for (const auto& r : rows) {
+      EXPECT_GT(r.at("stretch"), 1e-3);
+      const Vec3 xi(r.at("xh") - r.at("xg"), r.at("yh") - r.at("yg"), r.at("zh") - r.at("zg"));
+      EXPECT_LT(xi.norm(), reach);
+      // ½ k |ξ|⁴ s² scales with s²: the two energies are in the ratio s_crit² : s² − s_crit².
+      const double s = r.at("stretch") / 1e-3;
+      EXPECT_NEAR(r.at("overshoot_energy"), r.at("dissipated_energy") * (s * s - 1.0),
+                  1e-9 * r.at("dissipated_energy") * s * s);
+      dissipated += r.at("dissipated_energy");
+      overshoot += r.at("overshoot_energy");
+    }
+    EXPECT_NEAR(dissipated, last.dissipated, 1e-12 * last.dissipated);
+    EXPECT_NEAR(overshoot, last.overshoot, 1e-12 * last.dissipated);
+  }
 }
 
 }  // namespace

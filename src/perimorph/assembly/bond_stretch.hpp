@@ -22,6 +22,14 @@ struct StretchedBond {
   Vec3 xi = Vec3::Zero();
 };
 
+/// The energy the bond held when its stretch was `s` instead of b.stretch:
+/// ½ W ᾱ c (s |ξ|)² = b.energy (s / b.stretch)² (THEORY §5: at s = s_crit, the
+/// energy a failed bond dissipates).
+inline double energy_at_stretch(const StretchedBond& b, double s) {
+  const double ratio = s / b.stretch;
+  return b.energy * ratio * ratio;
+}
+
 /// The displacement at every non-local point (point k of NonlocalPoints at k).
 std::vector<Vec3> point_displacements(const NonlocalSpace& space, std::span<const double> u);
 

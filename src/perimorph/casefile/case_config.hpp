@@ -172,7 +172,8 @@ struct OutputSpec {
   std::string directory = "output";  ///< relative to the case file's folder unless absolute
   std::string basename;              ///< default: case file stem
   bool vtu = true;
-  int every = 1;  ///< write VTU every n increments (and always the last)
+  int every = 1;              ///< write VTU every n increments (and always the last)
+  bool failed_bonds = false;  ///< fracture runs: BASENAME_failed_bonds.csv, one row per failed bond
 };
 
 enum class KernelKind { constant, conical, exponential, gaussian };

@@ -63,8 +63,8 @@ std::vector<assembly::StretchedBond> BondFailure::select(std::span<const double>
   return over;
 }
 
-FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, la::Matrix& K, la::Matrix& A,
-                          la::Vector& rhs_unit, const DirichletData& bc) {
+FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, la::Matrix& K,
+                                 la::Matrix& A, la::Vector& rhs_unit, const DirichletData& bc) {
   const int dim = model_.dim();
   const auto& pts = model_.nonlocal->points;
   const auto& dm = model_.dofmap;
@@ -83,9 +83,7 @@ FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bon
   FailureEnergy energy;
   for (const auto& b : bonds) {
     if (!broken_.add(b.id)) continue;
-    // ½ W ᾱ c η² with η = s |ξ|: the energy at s_crit is (s_crit / s)² of it.
-    const double ratio = s_crit_ / b.stretch;
-    const double critical = b.energy * ratio * ratio;
+    const double critical = assembly::energy_at_stretch(b, s_crit_);
     energy.dissipated += critical;
     energy.overshoot += b.energy - critical;
     cell_dissipated_[static_cast<std::size_t>(b.id.e)] += 0.5 * critical;

@@ -54,7 +54,7 @@ class BondFailure {
   /// every support, are held by springs on A (no force on them). A and K are
   /// finalized here.
   FailureEnergy apply(const std::vector<assembly::StretchedBond>& bonds, la::Matrix& K, la::Matrix& A,
-               la::Vector& rhs_unit, const DirichletData& bc);
+                      la::Vector& rhs_unit, const DirichletData& bc);
 
   const bonds::BrokenBonds& broken() const { return broken_; }
   /// D of THEORY §5: Σ over the failed bonds of the energy each held at

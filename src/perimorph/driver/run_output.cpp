@@ -65,8 +65,13 @@ RunOutput::RunOutput(const Model& model, std::string directory, std::string base
   if (fracture_)
     failures_csv_ = std::make_unique<io::CsvTable>(
         (std::filesystem::path(directory_) / (basename_ + "_failures.csv")).string(),
-        std::vector<std::string>{"increment", "iteration", "bonds_failed", "dissipated_energy", "overshoot_energy",
-                                 "max_stretch_ratio", "solver_iterations"});
+        std::vector<std::string>{"increment", "iteration", "bonds_failed", "dissipated_energy",
+                                 "overshoot_energy", "max_stretch_ratio", "solver_iterations"});
+  if (fracture_ && model.config.output.failed_bonds)
+    failed_bonds_csv_ = std::make_unique<io::CsvTable>(
+        (std::filesystem::path(directory_) / (basename_ + "_failed_bonds.csv")).string(),
+        std::vector<std::string>{"increment", "iteration", "xg", "yg", "zg", "xh", "yh", "zh", "stretch",
+                                 "dissipated_energy", "overshoot_energy"});
   if (model.config.output.vtu) pvd_ = std::make_unique<io::PvdCollection>(pvd_path());
 }
 
@@ -174,6 +179,20 @@ void RunOutput::add_failure_row(int increment, int iteration, std::size_t bonds,
   failures_csv_->add_row({static_cast<double>(increment), static_cast<double>(iteration),
                           static_cast<double>(bonds), energy.dissipated, energy.overshoot, max_ratio,
                           static_cast<double>(solver_iterations)});
+}
+
+void RunOutput::add_failed_bonds(const Model& model, int increment, int iteration,
+                                 std::span<const assembly::StretchedBond> bonds, double s_crit) {
+  if (!failed_bonds_csv_) return;
+  const auto& pts = model.nonlocal->points;
+  for (const auto& b : bonds) {
+    const Vec3& xg = pts.x[pts.index(b.id.e, b.id.g)];
+    const Vec3& xh = pts.x[pts.index(b.id.f, b.id.h)];
+    const double critical = assembly::energy_at_stretch(b, s_crit);
+    failed_bonds_csv_->add_row({static_cast<double>(increment), static_cast<double>(iteration), xg.x(),
+                                xg.y(), xg.z(), xh.x(), xh.y(), xh.z(), b.stretch, critical,
+                                b.energy - critical});
+  }
 }
 
 }  // namespace perimorph::driver

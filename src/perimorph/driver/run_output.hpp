@@ -3,6 +3,7 @@
 // CSV row per increment (THEORY-independent bookkeeping; format in
 // docs/output.md).
 
+#include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/driver/model.hpp"
 #include "perimorph/io/csv_table.hpp"
 #include "perimorph/io/pvd_writer.hpp"
@@ -26,8 +27,8 @@ struct IncrementRecord {
   double dissipated = 0.0;            ///< D: every failed bond's energy at s_crit, cumulative (THEORY §5)
   double dissipated_increment = 0.0;  ///< the part of D from this increment
   double overshoot = 0.0;             ///< energy the failed bonds held beyond s_crit, cumulative
-  double released = 0.0;              ///< W − U − D − overshoot: released by re-equilibration after failures
-  std::size_t bonds_broken = 0;       ///< failed bonds, cumulative (pre-crack cuts not counted)
+  double released = 0.0;         ///< W − U − D − overshoot: released by re-equilibration after failures
+  std::size_t bonds_broken = 0;  ///< failed bonds, cumulative (pre-crack cuts not counted)
   std::size_t bonds_broken_increment = 0;
   int break_iterations = 0;        ///< solves after the first one in this increment
   double crack_area = 0.0;         ///< BondFailure::crack_area().projected
@@ -65,6 +66,11 @@ class RunOutput {
   /// the largest s/s_crit, Krylov iterations of the re-solve).
   void add_failure_row(int increment, int iteration, std::size_t bonds, const FailureEnergy& energy,
                        double max_ratio, int solver_iterations);
+  /// With [output] failed_bonds: one row per bond of `bonds` in
+  /// BASENAME_failed_bonds.csv (its points, stretch, energy at s_crit and
+  /// beyond; docs/output.md). Bonds already failed are the caller's to skip.
+  void add_failed_bonds(const Model& model, int increment, int iteration,
+                        std::span<const assembly::StretchedBond> bonds, double s_crit);
 
   const std::string& directory() const { return directory_; }
   std::string csv_path() const;
@@ -74,7 +80,7 @@ class RunOutput {
   std::string directory_, basename_;
   int dim_;
   bool fracture_ = false;
-  std::unique_ptr<io::CsvTable> csv_, failures_csv_;
+  std::unique_ptr<io::CsvTable> csv_, failures_csv_, failed_bonds_csv_;
   std::unique_ptr<io::PvdCollection> pvd_;
 };
 

@@ -164,6 +164,7 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
               "before this iteration is written as increment {}; {}",
               i + 1, total, lambda, rec.break_iterations, e.what(), i + 1, kept(i)));
         }
+        output.add_failed_bonds(model, i + 1, rec.break_iterations, bonds, failure->s_crit());
         solver.set_operator(A, model.dofmap.node_coordinates(), dim);
         const std::vector<double> u_before = uv;
         solve();
