@@ -114,7 +114,8 @@ class Report:
         self.blocks.append(md_table(header, rows))
 
     def figure_path(self, stem):
-        """Where a figure of this report goes (RESULTS/NAME_STEM.png); add it with figure()."""
+        """Where a figure of this report goes (RESULTS/NAME_STEM.png, the folder made); add it with figure()."""
+        os.makedirs(self.ctx.results, exist_ok=True)
         return os.path.join(self.ctx.results, f"{self.name}{'_' + stem if stem else ''}.png")
 
     def figure(self, path, caption):

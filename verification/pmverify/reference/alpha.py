@@ -15,6 +15,31 @@ def profile(name, t):
     raise ValueError(f"unknown profile {name!r}")
 
 
+def profile_slope(name, t):
+    """dα/dt on 0 < t < 1, 0 outside (the heaviside jump at t = 1/2 is a Dirac mass: left to the caller)."""
+    t = np.asarray(t, dtype=float)
+    inside = (t > 0.0) & (t < 1.0)
+    if name == "heaviside":
+        return np.zeros_like(t)
+    if name == "linear":
+        return np.where(inside, 1.0, 0.0)
+    if name == "cubic":
+        return np.where(inside, 6 * t - 6 * t**2, 0.0)
+    raise ValueError(f"unknown profile {name!r}")
+
+
+def profile_integral(name, t):
+    """∫₀^t α(s) ds, t clipped to [0, 1]."""
+    t = np.clip(np.asarray(t, dtype=float), 0.0, 1.0)
+    if name == "heaviside":
+        return np.maximum(t - 0.5, 0.0)
+    if name == "linear":
+        return t**2 / 2
+    if name == "cubic":
+        return t**3 - t**4 / 2
+    raise ValueError(f"unknown profile {name!r}")
+
+
 def from_distance(d, transition, name):
     """α of a shape whose inner part (α = 1) is at distance d ≤ 0 ... and whose transition of width
     `transition` lies at 0 < d < transition (d: distance outside the inner part)."""
