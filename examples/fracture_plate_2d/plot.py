@@ -67,7 +67,7 @@ def main():
     ax2.set_xlabel("opening [mm]")
     ax2.set_ylabel("energy [N mm per mm thickness]")
     ax2.set_title("Energies (THEORY §5: W − U − D ≥ 0)")
-    ax2.legend()
+    ax2.legend(fontsize="small", loc="center right")
     ax2.grid(alpha=0.3)
     coll = PolyCollection(polys, array=damage, cmap="magma", edgecolors="face", linewidths=0.2)
     coll.set_clim(0.0, max(0.5, max(damage)))

@@ -60,7 +60,7 @@ TEST(CaseFileFracture, CriticalStretchTakesDefaults) {
   EXPECT_EQ(f.G_c, 0.0);
   EXPECT_EQ(f.rule, BreakRule::all);
   EXPECT_EQ(f.fraction, 1.0);
-  EXPECT_EQ(f.max_iterations, 100);
+  EXPECT_EQ(f.max_iterations, 10000);
   EXPECT_TRUE(f.intra_cell_failure);
   EXPECT_TRUE(f.no_fail.empty());
   EXPECT_EQ(f.where.describe(), "f.toml:13:1: key 'fracture'");

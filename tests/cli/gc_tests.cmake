@@ -65,3 +65,9 @@ add_test(NAME cli_gc_s_crit_from_case_G_c
   COMMAND ${PM_GC_EXE} gc ${PM_GC_FRACTURE_CASE} --point 2 2 --normal 0 1)
 set_tests_properties(cli_gc_s_crit_from_case_G_c PROPERTIES
   PASS_REGULAR_EXPRESSION "s_crit +0\\.00156664 \\(\\[fracture\\] G_c.*closed form +G_c = 2\\.000000e-06 ")
+
+# `info` of a case with [fracture]: the G_c factor (byte-stable for scripts)
+# and the G_c, s_crit pair of the case.
+add_test(NAME cli_info_fracture_G_c COMMAND ${PM_GC_EXE} info ${PM_GC_FRACTURE_CASE})
+set_tests_properties(cli_info_fracture_G_c PROPERTIES
+  PASS_REGULAR_EXPRESSION "G_c = 8\\.14873.e-01 \\* s_crit\\^2 .*\\[fracture\\] G_c = 2\\.000000e-06: s_crit = 0\\.00156664")

@@ -13,6 +13,7 @@
 #include "perimorph/driver/stiffness.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "support/cases.hpp"
+#include "support/fracture_cases.hpp"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -29,69 +30,13 @@ namespace perimorph {
 namespace {
 
 using testing::fixed;
+using testing::pulled_case;
+using testing::read_rows;
 
 std::string scratch_dir(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() / ("perimorph_fracture_" + name);
   std::filesystem::remove_all(dir);
   return dir.string();
-}
-
-/// A bar [0, 20] (1D), a plate [0, 4] × [0, 2] (2D) or a block [0, 4] × [0, 2]
-/// × [0, 1] (3D) pulled along x to
-/// ε̄ = 1e-3 at load factor 1; non-local in the middle (cubic transition), the
-/// discrete calibration so that the interior carries E ε exactly.
-casefile::CaseConfig pulled_case(int dim, std::vector<double> factors, double s_crit) {
-  casefile::CaseConfig c;
-  if (dim == 1) {
-    c = testing::box_case(1, {160, 1, 1}, Vec3(20.0, 0, 0), 1.0, 0.0);
-    testing::add_nonlocal(c, casefile::KernelKind::constant, 0.5, 0.0, 3);
-    casefile::AlphaRegionSpec r;
-    r.shape = casefile::AlphaShapeKind::interval;
-    r.lower = Vec3(7.0, 0, 0);
-    r.upper = Vec3(13.0, 0, 0);
-    r.transition = 2.0;
-    c.alpha.regions = {r};
-    c.dirichlet = {fixed("xmin", 0), fixed("xmax", 0, 0.02)};
-  } else if (dim == 3) {
-    c = testing::box_case(3, {16, 8, 4}, Vec3(4.0, 2.0, 1.0), 1.0, 0.25);
-    testing::add_nonlocal(c, casefile::KernelKind::gaussian, 0.75, 0.25, 2);
-    casefile::AlphaRegionSpec r;
-    r.shape = casefile::AlphaShapeKind::box;
-    r.lower = Vec3(1.5, -1.0, -1.0);
-    r.upper = Vec3(2.5, 3.0, 2.0);
-    r.transition = 0.75;
-    c.alpha.regions = {r};
-    c.dirichlet = {fixed("xmin", 0), fixed("xmax", 0, 0.004)};
-    casefile::NodeSetSpec corner, edge;
-    corner.name = "origin";
-    edge.name = "yedge";  // (0, 2, 0): stops the rotation about x
-    edge.lower = edge.upper = Vec3(0.0, 2.0, 0.0);
-    c.node_sets = {corner, edge};
-    c.dirichlet.push_back(fixed("origin", 1));
-    c.dirichlet.push_back(fixed("origin", 2));
-    c.dirichlet.push_back(fixed("yedge", 2));
-  } else {
-    c = testing::box_case(2, {32, 16, 1}, Vec3(4.0, 2.0, 1.0), 1.0, 0.25);
-    testing::add_nonlocal(c, casefile::KernelKind::gaussian, 0.375, 0.125, 3);
-    casefile::AlphaRegionSpec r;
-    r.shape = casefile::AlphaShapeKind::box;
-    r.lower = Vec3(1.5, -1.0, 0);
-    r.upper = Vec3(2.5, 3.0, 0);
-    r.transition = 0.75;
-    c.alpha.regions = {r};
-    c.dirichlet = {fixed("xmin", 0), fixed("xmax", 0, 0.004)};
-    casefile::NodeSetSpec corner;
-    corner.name = "origin";
-    c.node_sets = {corner};
-    c.dirichlet.push_back(fixed("origin", 1));
-  }
-  c.materials[0].nu = std::numeric_limits<double>::quiet_NaN();
-  c.nonlocal.calibration = casefile::CalibrationRule::discrete;
-  c.loading.factors = std::move(factors);
-  c.fracture.enabled = true;
-  c.fracture.s_crit = s_crit;
-  c.solver.rtol = 1e-12;
-  return c;
 }
 
 /// An elastic solve at load factor 1 (nothing fails): its displacement and
@@ -338,35 +283,24 @@ TEST(Fracture, IterationCapStopsWithAMessageAndKeepsResults) {
     std::printf("%s\n", msg.c_str());
     EXPECT_NE(msg.find("increment 2/2"), std::string::npos) << msg;
     EXPECT_NE(msg.find("max_iterations"), std::string::npos) << msg;
+    // How many bonds were still failing, and the files that keep the state.
+    EXPECT_NE(msg.find("more are over the criterion now"), std::string::npos) << msg;
+    EXPECT_NE(
+        msg.find("kept as increment 2: its row in " + (std::filesystem::path(dir) / "test.csv").string()),
+        std::string::npos)
+        << msg;
+    EXPECT_NE(msg.find((std::filesystem::path(dir) / "test_failures.csv").string()), std::string::npos)
+        << msg;
   }
   EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(dir) / "test.csv"));
-}
-
-}  // namespace
-}  // namespace perimorph
-
-namespace perimorph {
-namespace {
-
-/// Rows of a numeric CSV written by io::CsvTable, by column name.
-std::vector<std::map<std::string, double>> read_rows(const std::string& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  for (std::stringstream ss(line); std::getline(ss, line, ',');) names.push_back(line);
-  std::vector<std::map<std::string, double>> rows;
-  while (std::getline(in, line)) {
-    std::map<std::string, double> row;
-    std::stringstream ss(line);
-    for (const auto& n : names) {
-      std::string v;
-      std::getline(ss, v, ',');
-      row[n] = std::stod(v);
-    }
-    rows.push_back(row);
-  }
-  return rows;
+  // The CSV has the stopped increment's row: its state after the last iteration.
+  const auto rows = read_rows((std::filesystem::path(dir) / "test.csv").string());
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[1].at("increment"), 2.0);
+  EXPECT_EQ(rows[1].at("break_iterations"), 2.0);
+  EXPECT_GT(rows[1].at("bonds_broken_increment"), 0.0);
+  EXPECT_GE(rows[1].at("external_work") - rows[1].at("strain_energy") - rows[1].at("dissipated_energy"),
+            -1e-12);
 }
 
 // [output] failed_bonds: one row per failed bond, over s_crit, shorter than

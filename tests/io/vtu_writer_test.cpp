@@ -3,7 +3,6 @@
 // .pvd and .csv files are read back as text.
 #include "perimorph/io/vtu_writer.hpp"
 #include "perimorph/io/csv_table.hpp"
-#include "perimorph/io/progress.hpp"
 #include "perimorph/io/pvd_writer.hpp"
 
 #include <gtest/gtest.h>
@@ -332,16 +331,6 @@ TEST_F(IoFiles, CsvTableWritesHeaderOnceAndRoundTripsRows) {
   for (std::string tok; std::getline(fields, tok, ',');) parsed.push_back(std::strtod(tok.c_str(), nullptr));
   EXPECT_EQ(parsed, row1);
   EXPECT_THROW(CsvTable(file("empty.csv"), {}), std::logic_error);
-}
-
-TEST(IoProgress, FormatsLineAndStaysSilentWhenDisabled) {
-  EXPECT_EQ(ProgressLine::format(3, 10, "load 0.3", 6.0),
-            "[increment 3/10] load 0.3 | elapsed 6.0 s | ETA 14.0 s");
-  EXPECT_EQ(ProgressLine::format(0, 10, "", 0.04), "[increment 0/10] | elapsed 0.0 s | ETA -");
-  ProgressLine line(10, false);
-  EXPECT_FALSE(line.active());
-  line.update(1, "x");
-  line.finish();
 }
 
 }  // namespace

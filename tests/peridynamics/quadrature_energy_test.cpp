@@ -103,8 +103,8 @@ struct KernelCase {
   const char* name;
 };
 
-const KernelCase kernels[] = {{KernelShape::exponential, 0.2, "exponential l=d/5"},
-                              {KernelShape::gaussian, 1.0 / 3.0, "gaussian l=d/3"},
+const KernelCase kernels[] = {{KernelShape::exponential, 0.2, "exponential l=δ/5"},
+                              {KernelShape::gaussian, 1.0 / 3.0, "gaussian l=δ/3"},
                               {KernelShape::constant, 1.0, "constant"}};
 
 TEST(PeridynamicsQuadratureEnergy, HorizonIntegralMatchesIndependentSum) {
@@ -148,20 +148,22 @@ TEST(PeridynamicsQuadratureEnergy, BulkTensorErrorTable) {
   // The cut-off table first (its rows are kept to compare), then partial volumes.
   std::map<std::tuple<int, double, int>, std::vector<double>> cutoff_cell;
   for (const bool partial : {false, true}) {
-    std::printf(
-        "%s: relative error max|D - C0| / max|C0|: cell-averaged D (worst single point in brackets)\n",
-        partial ? "partial-volume edge" : "cut-off edge");
-    std::printf("%-3s %-4s %-18s", "dim", "d/h", "kernel");
-    for (int q = 1; q <= max_order; ++q) std::printf(" | %-19s", (std::to_string(q) + " pt/dir").c_str());
+    // Markdown, copied into docs/verification/quadrature-energy.md by scripts/make_doc_tables.py.
+    std::printf("\n**%s**: max|D̄ − C₀| / max|C₀| of the cell-averaged D̄ (worst single point in brackets)\n\n",
+                partial ? "Partial-volume edge" : "Cut-off edge (bonds at exactly |ξ| = δ left out)");
+    std::printf("| dim | δ/h | kernel |");
+    for (int q = 1; q <= max_order; ++q) std::printf(" %d pt/dir |", q);
+    std::printf("\n|---|---|---|");
+    for (int q = 1; q <= max_order; ++q) std::printf("---|");
     std::printf("\n");
     for (const Row& row : rows)
       for (std::size_t ki = 0; ki < std::size(kernels); ++ki) {
         const KernelCase& k = kernels[ki];
         std::vector<QuadratureError> e;
-        std::printf("%-3d %-4.1f %-18s", row.dim, row.ratio, k.name);
+        std::printf("| %d | %.1f | %s |", row.dim, row.ratio, k.name);
         for (int q = 1; q <= max_order; ++q) {
           e.push_back(measure(row.dim, row.ratio, k.shape, k.l_over_delta, q, partial));
-          std::printf(" | %8.2e (%8.2e)", e.back().cell, e.back().point);
+          std::printf(" %.2e (%.2e) |", e.back().cell, e.back().point);
         }
         std::printf("\n");
         SCOPED_TRACE(::testing::Message() << row.dim << "D δ/h " << row.ratio << " " << k.name
@@ -234,17 +236,22 @@ TEST(PeridynamicsQuadratureEnergy, BenchmarkSettingsComponentErrors) {
     KernelShape shape;
     double l_over_delta;
   };
-  const Setting settings[] = {{"B2 4x4 exponential", 2, 3.5, 4, KernelShape::exponential, 0.2},
-                              {"B2 3x3 exponential", 2, 3.5, 3, KernelShape::exponential, 0.2},
-                              {"B2 4x4 gaussian l=d/3", 2, 3.5, 4, KernelShape::gaussian, 1.0 / 3.0},
-                              {"B4 3x3x3 exponential", 3, 3.0, 3, KernelShape::exponential, 0.2},
-                              {"B4 4x4x4 exponential", 3, 3.0, 4, KernelShape::exponential, 0.2},
-                              {"B4 4x4x4 gaussian l=d/3", 3, 3.0, 4, KernelShape::gaussian, 1.0 / 3.0}};
-  std::printf("%-26s %-14s %9s %9s %9s %9s\n", "setting", "edge", "xxxx", "xxyy", "shear", "E_uniax");
+  // The revised BENCHMARKS.md: B2/B3 use the thesis' l = 0.1 µm = δ/26.25 with
+  // 6×6 points (4×4 reported); B4 l = δ/5 and δ/10; B5 l = δ/10; B6 the
+  // gaussian l = δ/3 with 2×2×2 points at δ/h = 1 … 2.5.
+  const Setting settings[] = {{"B2 6x6 exponential l=δ/26", 2, 3.5, 6, KernelShape::exponential, 0.1 / 2.625},
+                              {"B2 4x4 exponential l=δ/26", 2, 3.5, 4, KernelShape::exponential, 0.1 / 2.625},
+                              {"B2 4x4 exponential l=δ/5", 2, 3.5, 4, KernelShape::exponential, 0.2},
+                              {"B4 3x3x3 exponential l=δ/5", 3, 3.0, 3, KernelShape::exponential, 0.2},
+                              {"B4 4x4x4 exponential l=δ/5", 3, 3.0, 4, KernelShape::exponential, 0.2},
+                              {"B4/B5 3x3x3 exponential l=δ/10", 3, 3.0, 3, KernelShape::exponential, 0.1},
+                              {"B6 2x2x2 gaussian l=δ/3 h=δ/2", 3, 2.0, 2, KernelShape::gaussian, 1.0 / 3.0},
+                              {"B6 2x2x2 gaussian l=δ/3 h=0.4δ", 3, 2.5, 2, KernelShape::gaussian, 1.0 / 3.0}};
+  std::printf("\n| setting | edge | xxxx | xxyy | shear xyxy | E_uniax |\n|---|---|---|---|---|---|\n");
   for (const Setting& s : settings)
     for (const bool partial : {false, true}) {
       const auto e = measure(s.dim, s.ratio, s.shape, s.l_over_delta, s.order, partial);
-      std::printf("%-26s %-14s %+9.2e %+9.2e %+9.2e %+9.2e\n", s.name, partial ? "partial volume" : "cut-off",
+      std::printf("| %s | %s | %+.2e | %+.2e | %+.2e | %+.2e |\n", s.name, partial ? "partial volume" : "cut-off",
                   e.normal, e.cross, e.shear, e.uniaxial);
       // Central forces on a lattice of cubic symmetry: D̄ keeps the Cauchy relation
       // D̄_xxyy = D̄_xyxy exactly (up to round-off), so the cross and shear errors coincide.

@@ -76,19 +76,18 @@ AlphaField AlphaField::regions(std::vector<Region> regions, int dim) {
   return f;
 }
 
+double region_value(const Region& r, const Vec3& x, int dim) {
+  const double d = distance(r.shape, x, dim);
+  if (d <= 0.0) return 1.0;
+  if (d >= r.transition) return 0.0;
+  return profile_value(r.profile, 1.0 - d / r.transition);
+}
+
 double AlphaField::operator()(const Vec3& x) const {
   if (regions_.empty()) return constant_;
   double a = 0.0;
   for (const Region& r : regions_) {
-    const double d = distance(r.shape, x, dim_);
-    double v;
-    if (d <= 0.0)
-      v = 1.0;
-    else if (d >= r.transition)
-      v = 0.0;
-    else
-      v = profile_value(r.profile, 1.0 - d / r.transition);
-    a = std::max(a, v);
+    a = std::max(a, region_value(r, x, dim_));
     if (a >= 1.0) break;
   }
   return a;

@@ -57,6 +57,10 @@ struct Region {
   Profile profile = Profile::cubic;
 };
 
+/// α of one region at x: 1 inside the shape, profile(1 − d/L) at a distance
+/// d < L outside it, 0 beyond (normal and axis of the shape already unit).
+double region_value(const Region& region, const Vec3& x, int dim);
+
 class AlphaField {
  public:
   /// α ≡ value everywhere (0 or 1, or any constant in [0, 1]).
@@ -66,6 +70,9 @@ class AlphaField {
 
   double operator()(const Vec3& x) const;
   bool is_constant() const { return regions_.empty(); }
+  /// The regions as given to regions(), normals and axes normalized.
+  const std::vector<Region>& region_list() const { return regions_; }
+  int dim() const { return dim_; }
   double constant_value() const { return constant_; }
 
  private:

@@ -179,6 +179,22 @@ std::vector<InterfaceBonds> interface_bonds_dim(const NonlocalSpace& s) {
   return all;
 }
 
+template <int D>
+BondCount count_bonds_dim(const NonlocalSpace& s) {
+  const Index ncells = s.mesh.num_cells();
+  std::size_t bonds = 0, pairs = 0;
+#pragma omp parallel for schedule(dynamic, 8) reduction(+ : bonds, pairs)
+  for (Index e = 0; e < ncells; ++e)
+    for (Index f : s.graph.row(e)) {
+      if (f < e) continue;
+      std::size_t here = 0;
+      for_each_bond_of_pair<D>(s, e, f, [&](int, int, const Vec3&, double, double, bool) { ++here; });
+      bonds += here;
+      pairs += here > 0 ? 1 : 0;
+    }
+  return {bonds, pairs};
+}
+
 }  // namespace
 
 bool has_intact_bond(const NonlocalSpace& space, Index e, Index f) {
@@ -189,6 +205,17 @@ bool has_intact_bond(const NonlocalSpace& space, Index e, Index f) {
       return has_intact_bond_dim<2>(space, e, f);
     default:
       return has_intact_bond_dim<3>(space, e, f);
+  }
+}
+
+BondCount count_bonds(const NonlocalSpace& space) {
+  switch (space.mesh.dim()) {
+    case 1:
+      return count_bonds_dim<1>(space);
+    case 2:
+      return count_bonds_dim<2>(space);
+    default:
+      return count_bonds_dim<3>(space);
   }
 }
 

@@ -46,6 +46,15 @@ struct BondWeights {
 };
 BondWeights point_bond_weights(const NonlocalSpace& space);
 
+/// The bonds of the space: unordered pairs of non-local points with
+/// ᾱ c_bond > 0 not crossing a cut, failed ones included (the bonds of the
+/// non-local stiffness before any failure: NonlocalStats::bonds), and the cell
+/// pairs (e ≤ f) that hold at least one (NonlocalStats::cell_pairs).
+struct BondCount {
+  std::size_t bonds = 0, cell_pairs = 0;
+};
+BondCount count_bonds(const NonlocalSpace& space);
+
 /// Whether cells e and f share at least one intact bond (either order).
 /// Stops at the first one found.
 bool has_intact_bond(const NonlocalSpace& space, Index e, Index f);

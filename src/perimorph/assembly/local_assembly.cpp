@@ -68,9 +68,12 @@ void assemble_body_force_dim(const LocalSpace& s, const std::function<Vec3(const
   fem::ElementVector<D> f;
   for (Index c = 0; c < s.mesh.num_cells(); ++c) {
     fem::body_force_load<D>(cell_coordinates<D>(s.mesh, c), s.rule, b, s.scale, f);
-    const auto dofs = cell_dofs<D>(s.dofmap, c);
-    for (int i = 0; i < fem::element_dofs<D>; ++i)
-      F[static_cast<std::size_t>(dofs[static_cast<std::size_t>(i)])] += f[i];
+    const auto nodes = s.dofmap.cell_nodes(c);
+    // Q1 nodes, or the one node of a DG degree 0 cell (N ≡ 1: the sum of the Q1 loads).
+    const int n = static_cast<int>(nodes.size());
+    for (int a = 0; a < fem::q1_nodes<D>; ++a)
+      for (int d = 0; d < D; ++d)
+        F[static_cast<std::size_t>(nodes[static_cast<std::size_t>(n == 1 ? 0 : a)] * D + d)] += f[a * D + d];
   }
 }
 
@@ -90,10 +93,12 @@ void assemble_traction_dim(const LocalSpace& s, std::span<const mesh::CellFace> 
           s.mesh.node(s.mesh.cell(cf.cell)[static_cast<std::size_t>(local[static_cast<std::size_t>(a)])]);
     const auto f = fem::face_traction_load<D>(Y, face_rule, t, s.scale);
     const auto nodes = s.dofmap.cell_nodes(cf.cell);
-    for (int a = 0; a < nf; ++a)
-      for (int d = 0; d < D; ++d)
-        F[static_cast<std::size_t>(nodes[static_cast<std::size_t>(local[static_cast<std::size_t>(a)])] * D +
-                                   d)] += f[a * D + d];
+    // The face's Q1 nodes, or the one node of a DG degree 0 cell (N ≡ 1: the whole face load).
+    for (int a = 0; a < nf; ++a) {
+      const Index node =
+          nodes.size() == 1 ? nodes[0] : nodes[static_cast<std::size_t>(local[static_cast<std::size_t>(a)])];
+      for (int d = 0; d < D; ++d) F[static_cast<std::size_t>(node * D + d)] += f[a * D + d];
+    }
   }
 }
 

@@ -38,11 +38,13 @@ void assemble_elasticity(const LocalSpace& space, const fem::ConstitutiveField& 
                          const std::function<bool(Index)>& include = {});
 
 /// F += ∫ N b(x) dx over every cell (b: force per volume, mesh coordinates).
+/// A DG degree 0 cell (one node, N ≡ 1) takes the whole load of its volume.
 void assemble_body_force(const LocalSpace& space, const std::function<Vec3(const Vec3&)>& b,
                          std::span<double> F);
 
 /// F += ∫ N t dS over the given faces for a constant traction t (force per area;
-/// per length in 2D before the thickness scale).
+/// per length in 2D before the thickness scale). A face of a DG degree 0 cell
+/// puts its whole load on the cell's one node.
 void assemble_traction(const LocalSpace& space, std::span<const mesh::CellFace> faces, const Vec3& t,
                        std::span<double> F);
 

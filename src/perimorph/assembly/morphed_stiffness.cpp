@@ -22,17 +22,6 @@ std::vector<std::array<int, 2>> voigt_pairs(int dim) {
   return {{0, 0}, {1, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}};
 }
 
-Vec3 physical_point(const mesh::Mesh& mesh, Index c, const Vec3& xi) {
-  Vec3 x = Vec3::Zero();
-  const auto nodes = mesh.cell(c);
-  for (int a = 0; a < mesh.nodes_per_cell(); ++a) {
-    double N = 1.0;
-    for (int d = 0; d < mesh.dim(); ++d) N *= 0.5 * (1.0 + mesh::reference_node_coordinate(a, d) * xi[d]);
-    x += N * mesh.node(nodes[static_cast<std::size_t>(a)]);
-  }
-  return x;
-}
-
 Vec3 box_half_widths(const mesh::Mesh& mesh, Index c, const Vec3& xi, const Vec3& line_weights) {
   auto box = [&]<int D>() {
     fem::NodeCoords<D> X;
@@ -47,6 +36,17 @@ Vec3 box_half_widths(const mesh::Mesh& mesh, Index c, const Vec3& xi, const Vec3
 }
 
 }  // namespace
+
+Vec3 physical_point(const mesh::Mesh& mesh, Index c, const Vec3& xi) {
+  Vec3 x = Vec3::Zero();
+  const auto nodes = mesh.cell(c);
+  for (int a = 0; a < mesh.nodes_per_cell(); ++a) {
+    double N = 1.0;
+    for (int d = 0; d < mesh.dim(); ++d) N *= 0.5 * (1.0 + mesh::reference_node_coordinate(a, d) * xi[d]);
+    x += N * mesh.node(nodes[static_cast<std::size_t>(a)]);
+  }
+  return x;
+}
 
 Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const Index> cells,
                                  const bonds::NonlocalPoints& points,

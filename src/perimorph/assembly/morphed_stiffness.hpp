@@ -41,6 +41,9 @@ struct MorphedStiffness {
   Index morphing_cells = 0;
 };
 
+/// The image of the reference point xi of cell c under the Q1 map.
+Vec3 physical_point(const mesh::Mesh& mesh, Index c, const Vec3& xi);
+
 /// The horizon integral ∫ c(ξ) (α_g − α(p))/2 ξ⊗ξ⊗ξ⊗ξ/(2|ξ|²) dp at x_g
 /// (Voigt, model dimension), summed over the non-local points of the given
 /// cells, bonds crossing a cut excluded, with the same bond rule as the

@@ -252,8 +252,10 @@ struct FractureSpec {
   double s_crit = 0.0;   ///< > 0, or 0 when G_c is given
   double G_c = 0.0;      ///< > 0, or 0 when s_crit is given
   BreakRule rule = BreakRule::all;
-  double fraction = 1.0;     ///< rule = fraction: 0 < fraction ≤ 1
-  int max_iterations = 100;  ///< bond-breaking iterations per increment, ≥ 1
+  double fraction = 1.0;  ///< rule = fraction: 0 < fraction ≤ 1
+  /// Bond-breaking iterations per increment, ≥ 1. The default is a guard no
+  /// real crack reaches (docs/case-file.md: ~9 per cell of crack path).
+  int max_iterations = 10000;
   /// Names of [[region]]s whose bonds never fail: a bond with either end in
   /// one of their cells is kept (a no-fail zone, e.g. under a load patch).
   std::vector<std::string> no_fail;

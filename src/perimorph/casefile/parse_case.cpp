@@ -9,6 +9,7 @@
 #include "perimorph/casefile/parse_fracture.hpp"
 #include "perimorph/casefile/parse_material.hpp"
 #include "perimorph/casefile/parse_nonlocal.hpp"
+#include "perimorph/casefile/parse_run.hpp"
 #include "perimorph/casefile/parse_sets.hpp"
 #include "perimorph/casefile/toml_reader.hpp"
 #include "perimorph/core/error.hpp"
@@ -304,75 +305,6 @@ void read_boundary(const Table& root, CaseConfig& c) {
   }
 }
 
-// ------------------------------------------------------------ [loading], [solver], [output]
-
-void read_loading(const Table& root, CaseConfig& c) {
-  const auto t = root.table("loading");
-  if (!t) return;
-  t->check_keys({"increments", "factors", "body_force"});
-  const auto increments = t->get("increments");
-  const auto factors = t->get("factors");
-  if (increments && factors)
-    factors->fail(
-        fmt::format("cannot be combined with loading.increments (line {}); give either increments = N "
-                    "(factors 1/N, 2/N, ..., 1) or an explicit list factors = [...]",
-                    increments->where().line));
-  if (increments) {
-    const int n = increments->integer(1, 1000000);
-    c.loading.factors.resize(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i)
-      c.loading.factors[static_cast<std::size_t>(i)] = static_cast<double>(i + 1) / n;
-  }
-  if (factors) {
-    const std::vector<Value> items = factors->elements();
-    if (items.empty()) factors->fail("must list at least one load factor, e.g. factors = [0.5, 1.0]");
-    c.loading.factors.clear();
-    for (const Value& item : items) c.loading.factors.push_back(item.number());
-  }
-  if (auto v = t->get("body_force")) c.loading.body_force = v->vector(c.dim(), for_dim(c.dim()));
-}
-
-void read_solver(const Table& root, CaseConfig& c) {
-  const auto t = root.table("solver");
-  if (!t) return;
-  t->check_keys({"petsc_options", "rtol", "max_iterations"});
-  if (auto v = t->get("petsc_options")) {
-    c.solver.petsc_options = v->string();
-    const auto first = c.solver.petsc_options.find_first_not_of(" \t");
-    if (first != std::string::npos && c.solver.petsc_options[first] != '-')
-      v->fail(
-          fmt::format("must be PETSc command-line options starting with '-', e.g. \"-ksp_type cg -pc_type "
-                      "gamg\"; got {:?}",
-                      c.solver.petsc_options));
-  }
-  if (auto v = t->get("rtol")) {
-    c.solver.rtol = v->number();
-    if (!(c.solver.rtol > 0 && c.solver.rtol < 1))
-      v->fail(fmt::format("the relative residual tolerance must lie strictly between 0 and 1, got {}",
-                          c.solver.rtol));
-  }
-  if (auto v = t->get("max_iterations")) c.solver.max_iterations = v->integer(1, kMaxInt);
-}
-
-void read_output(const Table& root, CaseConfig& c) {
-  std::string stem = std::filesystem::path(c.path).stem().string();
-  c.output.basename = stem.empty() ? "case" : stem;
-  const auto t = root.table("output");
-  if (!t) return;
-  t->check_keys({"directory", "basename", "vtu", "every", "failed_bonds"});
-  if (auto v = t->get("directory")) c.output.directory = v->name();
-  if (auto v = t->get("basename")) {
-    c.output.basename = v->name();
-    if (c.output.basename.find_first_of("/\\") != std::string::npos)
-      v->fail(
-          fmt::format("must be a plain file-name stem without '/', got {:?}; put folders in output.directory",
-                      c.output.basename));
-  }
-  if (auto v = t->get("vtu")) c.output.vtu = v->boolean();
-  if (auto v = t->get("every")) c.output.every = v->integer(1, kMaxInt);
-  if (auto v = t->get("failed_bonds")) c.output.failed_bonds = v->boolean();
-}
-
 }  // namespace
 
 CaseConfig parse_case_string(std::string_view toml_text, const std::string& pretend_path) {
@@ -403,9 +335,9 @@ CaseConfig parse_case_string(std::string_view toml_text, const std::string& pret
   detail::read_alpha(root, c);
   detail::read_fracture(root, c);
   read_boundary(root, c);
-  read_loading(root, c);
-  read_solver(root, c);
-  read_output(root, c);
+  detail::read_loading(root, c);
+  detail::read_solver(root, c);
+  detail::read_output(root, c);
   return c;
 }
 

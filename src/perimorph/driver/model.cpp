@@ -101,7 +101,11 @@ Voigt6 material_stiffness(const casefile::MaterialSpec& m) {
   return C;
 }
 
-Model build_model(const casefile::CaseConfig& config) {
+Model build_model(const casefile::CaseConfig& config, const PhaseCallback& on_phase) {
+  auto phase = [&](const char* name) {
+    if (on_phase) on_phase(name);
+  };
+  phase("mesh");
   mesh::Mesh m = build_mesh(config);
   const int dim = m.dim();
   const double scale = dim == 3 ? 1.0 : config.model.thickness;
@@ -110,6 +114,7 @@ Model build_model(const casefile::CaseConfig& config) {
   std::vector<dofs::Continuity> continuity;
 
   std::optional<NonlocalModel> nl;
+  phase("material");
   if (config.nonlocal.enabled) {
     nl.emplace();
     nl->material = nonlocal_material(config);
@@ -128,8 +133,11 @@ Model build_model(const casefile::CaseConfig& config) {
       nl->calibration.gc_factor *= nl->discrete_factor;
     }
     nl->kernel.scale = nl->calibration.scale / scale;  // bond weights W = t² w w carry t twice
+    phase("points");
     nl->alpha = make_alpha_field(config);
     nl->points = bonds::make_nonlocal_points(m, config.nonlocal.quadrature, scale, nl->alpha, partial_volume);
+    check_alpha_regions(config, nl->alpha, nl->points, m, rule);
+    phase("bond graph");
     const auto& amax = nl->points.cell_alpha_max;
     // Boxes of the local and non-local points: the graph must hold every cell
     // the bonds of a non-local point or the horizon integral of a local point
@@ -142,6 +150,7 @@ Model build_model(const casefile::CaseConfig& config) {
                                              return amax[static_cast<std::size_t>(e)] > 0.0 ||
                                                     amax[static_cast<std::size_t>(f)] > 0.0;
                                            });
+    phase("morphed stiffness");
     nl->morph = assembly::morph_stiffness(m, rule, nl->points, nl->graph, nl->kernel, nl->alpha, C0,
                                           config.nonlocal.coupling == casefile::Coupling::partition
                                               ? assembly::CouplingRule::partition
@@ -174,6 +183,7 @@ Model build_model(const casefile::CaseConfig& config) {
             "with region = \"all\" or cover every region",
             config.path, c, m.cell_centroid(c).x(), m.cell_centroid(c).y(), m.cell_centroid(c).z()));
   }
+  phase("dof map");
   dofs::DofMap dofmap(m, dim, continuity);
   return Model{config,           std::move(m), std::move(dofmap), std::move(rule),
                std::move(field), scale,        std::move(nl)};

@@ -11,7 +11,9 @@
 #include "perimorph/fem/material.hpp"
 #include "perimorph/mesh/mesh.hpp"
 
+#include <functional>
 #include <optional>
+#include <string>
 
 namespace perimorph::driver {
 
@@ -42,9 +44,14 @@ mesh::Mesh build_mesh(const casefile::CaseConfig& config);
 /// 3D stiffness (Voigt 6×6) of a case material, checked for admissibility.
 Voigt6 material_stiffness(const casefile::MaterialSpec& m);
 
+/// Called with the name of each set-up phase as it begins ("mesh", "bond
+/// graph", ...), for a progress display.
+using PhaseCallback = std::function<void(const std::string& phase)>;
+
 /// Builds everything; throws InputError naming the case-file key for problems
 /// found only now (a cut off the element faces, an inadmissible material, a
-/// cell left without material).
-Model build_model(const casefile::CaseConfig& config);
+/// cell left without material, an [[alpha.region]] that reaches no
+/// quadrature point). `on_phase`, if given, hears each phase begin.
+Model build_model(const casefile::CaseConfig& config, const PhaseCallback& on_phase = {});
 
 }  // namespace perimorph::driver

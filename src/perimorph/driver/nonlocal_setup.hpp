@@ -11,6 +11,8 @@
 #include "perimorph/driver/nonlocal_material.hpp"
 #include "perimorph/peridynamics/micromodulus.hpp"
 
+#include <span>
+
 namespace perimorph::driver {
 
 struct NonlocalModel {
@@ -26,6 +28,15 @@ struct NonlocalModel {
 
 /// The α field of a case (α ≡ 0 when [alpha] is absent).
 alpha::AlphaField make_alpha_field(const casefile::CaseConfig& config);
+
+/// Throws InputError, naming the entry's file and line, its shape and the
+/// mesh's extent, for an [[alpha.region]] of `alpha` (made by make_alpha_field)
+/// that gives α > 0 at none of the points α is read at: the non-local points
+/// and the local quadrature points of `rule` in every cell. Such a region
+/// would change nothing.
+void check_alpha_regions(const casefile::CaseConfig& config, const alpha::AlphaField& alpha,
+                         const bonds::NonlocalPoints& points, const mesh::Mesh& mesh,
+                         std::span<const fem::QuadraturePoint> rule);
 
 /// The micromodulus of a case (shape, δ, l; scale not yet calibrated).
 peridynamics::Micromodulus make_kernel(const casefile::NonlocalSpec& spec);

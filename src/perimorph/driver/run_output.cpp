@@ -64,7 +64,7 @@ RunOutput::RunOutput(const Model& model, std::string directory, std::string base
   csv_ = std::make_unique<io::CsvTable>(csv_path(), std::move(columns));
   if (fracture_)
     failures_csv_ = std::make_unique<io::CsvTable>(
-        (std::filesystem::path(directory_) / (basename_ + "_failures.csv")).string(),
+        failures_csv_path(),
         std::vector<std::string>{"increment", "iteration", "bonds_failed", "dissipated_energy",
                                  "overshoot_energy", "max_stretch_ratio", "solver_iterations"});
   if (fracture_ && model.config.output.failed_bonds)
@@ -80,6 +80,12 @@ std::string RunOutput::csv_path() const {
 }
 std::string RunOutput::pvd_path() const {
   return (std::filesystem::path(directory_) / (basename_ + ".pvd")).string();
+}
+std::string RunOutput::vtu_path(int increment) const {
+  return (std::filesystem::path(directory_) / fmt::format("{}_{:04d}.vtu", basename_, increment)).string();
+}
+std::string RunOutput::failures_csv_path() const {
+  return fracture_ ? (std::filesystem::path(directory_) / (basename_ + "_failures.csv")).string() : "";
 }
 
 void RunOutput::write_increment_vtu(const Model& model, int increment, double load_factor,
@@ -154,9 +160,8 @@ void RunOutput::write_increment_vtu(const Model& model, int increment, double lo
   if (!fracture.damage.empty()) grid.cell_data.push_back({"damage", 1, fracture.damage});
   if (!fracture.dissipated.empty()) grid.cell_data.push_back({"dissipated_energy", 1, fracture.dissipated});
 
-  const std::string name = fmt::format("{}_{:04d}.vtu", basename_, increment);
-  io::write_vtu((std::filesystem::path(directory_) / name).string(), grid);
-  pvd_->add(load_factor, name);
+  io::write_vtu(vtu_path(increment), grid);
+  pvd_->add(load_factor, std::filesystem::path(vtu_path(increment)).filename().string());
 }
 
 void RunOutput::add_row(const IncrementRecord& r) {

@@ -75,6 +75,11 @@ class RunOutput {
   const std::string& directory() const { return directory_; }
   std::string csv_path() const;
   std::string pvd_path() const;
+  /// The VTU of an increment (written or not: [output] vtu may be false).
+  std::string vtu_path(int increment) const;
+  /// BASENAME_failures.csv ("" for a run without [fracture]).
+  std::string failures_csv_path() const;
+  bool writes_vtu() const { return pvd_ != nullptr; }
 
  private:
   std::string directory_, basename_;

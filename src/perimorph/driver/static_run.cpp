@@ -1,8 +1,6 @@
 #include "perimorph/driver/static_run.hpp"
 
 #include "perimorph/core/error.hpp"
-#include "perimorph/driver/bond_failure.hpp"
-#include "perimorph/driver/boundary_conditions.hpp"
 #include "perimorph/driver/run_output.hpp"
 #include "perimorph/driver/stiffness.hpp"
 #include "perimorph/io/progress.hpp"
@@ -10,10 +8,12 @@
 #include "perimorph/la/petsc_session.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <memory>
 #include <optional>
 
 namespace perimorph::driver {
@@ -23,6 +23,15 @@ std::string resolve_output_directory(const casefile::CaseConfig& config, const R
   const std::filesystem::path dir(config.output.directory);
   if (dir.is_absolute()) return dir.string();
   return (std::filesystem::path(config.path).parent_path() / dir).lexically_normal().string();
+}
+
+RunSetup prepare_run(const Model& model) {
+  RunSetup setup;
+  setup.bc = build_dirichlet(model);
+  setup.F = build_external_force(model);
+  setup.sets = reaction_sets(model);
+  if (model.config.fracture.enabled) setup.failure.emplace(model);
+  return setup;
 }
 
 namespace {
@@ -43,6 +52,13 @@ std::vector<Vec3> sum_reactions(const std::vector<ReactionSet>& sets, std::span<
   return out;
 }
 
+/// "[fracture] max_iterations in case.toml (now 7)" or "(default 10000)".
+std::string max_iterations_source(const casefile::FractureSpec& spec) {
+  const bool given = spec.max_iterations != casefile::FractureSpec{}.max_iterations;
+  return fmt::format("[fracture] max_iterations in {} ({} {})", spec.where.file, given ? "now" : "default",
+                     spec.max_iterations);
+}
+
 }  // namespace
 
 RunSummary run_static(const Model& model, const RunOptions& options) {
@@ -50,17 +66,30 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
   const auto start = clock::now();
   const auto& config = model.config;
   const int dim = model.dim();
+  const auto& factors = config.loading.factors;
+  const int total = static_cast<int>(factors.size());
+  std::unique_ptr<io::ProgressLine> own_progress;
+  if (!options.progress) own_progress = std::make_unique<io::ProgressLine>(total, !options.quiet, start);
+  io::ProgressLine& progress = options.progress ? *options.progress : *own_progress;
   la::add_options(config.solver.petsc_options);
 
+  // Constraints and loads first: a case error stops the run before the assembly.
+  progress.phase("loads");
+  RunSetup setup = prepare_run(model);
+  const DirichletData& bc = setup.bc;
+  const std::vector<double>& F = setup.F;
+  const auto& sets = setup.sets;
+  std::optional<BondFailure>& failure = setup.failure;
+
   // K (kept unconstrained for reactions and energies) and the constrained copy A.
+  progress.phase("assembly");
   AssembledStiffness assembled = assemble_stiffness(model);
   la::Matrix& K = assembled.K;
-  const DirichletData bc = build_dirichlet(model);
-  const std::vector<double> F = build_external_force(model);
   const Index n = model.dofmap.num_dofs();
 
   // Unit-load right-hand side with the constraints eliminated: linear in the
   // load factor, so it is scaled per increment.
+  progress.phase("solver set-up");
   la::Vector g(n, dim), rhs_unit(n, dim), f_unit(n, dim);
   {
     std::vector<double> gv(static_cast<std::size_t>(n), 0.0);
@@ -75,12 +104,6 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
   la::LinearSolver solver(config.solver.rtol, config.solver.max_iterations);
   solver.set_operator(A, model.dofmap.node_coordinates(), dim);
 
-  // Bond failure (THEORY §5): after each solve, break the bonds over the
-  // criterion, update K, A and the right-hand side, re-solve; until none breaks.
-  std::optional<BondFailure> failure;
-  if (config.fracture.enabled) failure.emplace(model);
-
-  const auto sets = reaction_sets(model);
   RunSummary summary;
   for (const auto& s : sets) summary.reaction_names.push_back(s.name);
   summary.output_directory = resolve_output_directory(config, options);
@@ -88,12 +111,11 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
   summary.csv_path = output.csv_path();
   summary.pvd_path = config.output.vtu ? output.pvd_path() : "";
 
-  const auto& factors = config.loading.factors;
-  const int total = static_cast<int>(factors.size());
-  io::ProgressLine progress(total, !options.quiet);
+  progress.start_increments();
   la::Vector u(n, dim), rhs(n, dim), internal(n, dim);
   std::vector<double> u_prev(static_cast<std::size_t>(n), 0.0), fint_prev(static_cast<std::size_t>(n), 0.0);
   double work = 0.0;
+  bool options_checked = false;
 
   for (int i = 0; i < total; ++i) {
     const double lambda = factors[static_cast<std::size_t>(i)];
@@ -119,6 +141,16 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
                 : "",
             kept(i)));
       }
+      // The solver has read its options (the preconditioner's at its first set-up).
+      if (!options_checked) {
+        options_checked = true;
+        if (const auto unused = la::unused_options(); !unused.empty())
+          progress.message(fmt::format(
+              "warning: PETSc did not use the option(s) {}: misspelt, or meant for a solver or "
+              "preconditioner not in use (the case's [solver] petsc_options and the command line; -help "
+              "lists the options the solver reads)",
+              fmt::join(unused, ", ")));
+      }
     };
     solve();
     // Work of all external forces (applied + reactions = K u at equilibrium)
@@ -130,6 +162,49 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
     for (std::size_t k = 0; k < uv.size(); ++k) work += 0.5 * (fint[k] + fint_prev[k]) * (uv[k] - u_prev[k]);
 
     IncrementRecord rec;
+    // The CSV row (and VTU) of the state reached: after the loop, or when it
+    // stops at max_iterations (then always with its VTU).
+    auto record = [&](bool force_vtu) {
+      if (failure) {
+        if (rec.break_iterations > 0) {
+          K.mult(u, internal);
+          fint = internal.to_std();
+        }
+        rec.bonds_broken = failure->broken().size();
+        rec.dissipated = failure->dissipated();
+        rec.overshoot = failure->overshoot();
+        const CrackArea crack = failure->crack_area();
+        rec.crack_area = crack.projected;
+        rec.broken_face_area = crack.total;
+        rec.floating_parts = failure->floating_parts();
+      }
+      std::vector<double> reaction(fint);
+      for (std::size_t k = 0; k < reaction.size(); ++k) reaction[k] -= lambda * F[k];
+      double energy = 0.0;
+      for (std::size_t k = 0; k < uv.size(); ++k) energy += 0.5 * uv[k] * fint[k];
+      u_prev = uv;
+      fint_prev = fint;
+
+      rec.increment = i + 1;
+      rec.load_factor = lambda;
+      rec.reactions = sum_reactions(sets, reaction, dim);
+      rec.strain_energy = energy;
+      rec.external_work = work;
+      rec.iterations = summary.last_solve.iterations;
+      rec.relative_residual = summary.last_solve.relative_residual;
+      rec.wall_time = std::chrono::duration<double>(clock::now() - start).count();
+      rec.released = failure ? work - energy - rec.dissipated - rec.overshoot : 0.0;
+      output.add_row(rec);
+      const int every = config.output.every;
+      if (force_vtu || (i + 1) % every == 0 || i + 1 == total)
+        output.write_increment_vtu(model, i + 1, lambda, uv, failure ? failure->fields() : FractureFields{});
+      summary.displacement = uv;
+      summary.reactions = rec.reactions;
+      summary.strain_energy = energy;
+      summary.external_work = work;
+      summary.history.push_back(rec);
+    };
+
     if (failure) {
       // Re-equilibration at fixed load: prescribed dofs do not move, applied
       // forces are constant, so the external work is λ F·Δu exactly.
@@ -139,16 +214,23 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
         const auto bonds = failure->select(uv);
         if (bonds.empty()) break;
         if (rec.break_iterations == config.fracture.max_iterations) {
+          rec.bonds_broken_increment = failure->broken().size() - before;
+          rec.dissipated_increment = failure->dissipated() - dissipated_before;
+          record(true);
           progress.finish();
-          output.write_increment_vtu(model, i + 1, lambda, uv, failure->fields());
+          const std::string files =
+              output.writes_vtu()
+                  ? fmt::format("{} and its row in {}", output.vtu_path(i + 1), output.csv_path())
+                  : fmt::format("its row in {} ([output] vtu = false)", output.csv_path());
           throw Error(fmt::format(
-              "increment {}/{} (load factor {}): bonds still fail after {} bond-breaking iterations ({} "
-              "failed "
-              "in this increment, {} over the criterion now): the crack is running unstably at this load, or "
-              "the iterations diverge. Use smaller load increments or raise [fracture] max_iterations. The "
-              "state after the last iteration is written as increment {}; {}",
-              i + 1, total, lambda, rec.break_iterations, failure->broken().size() - before, bonds.size(),
-              i + 1, kept(i)));
+              "increment {}/{} (load factor {}): bonds still fail after {} bond-breaking iterations: {} "
+              "bonds "
+              "failed in this increment and {} more are over the criterion now. The crack is running "
+              "unstably at this load (or the iterations do not settle). Use smaller load increments or "
+              "raise {}. The state after the last iteration is kept as increment {}: {}; every iteration "
+              "is in {}. {}",
+              i + 1, total, lambda, rec.break_iterations, rec.bonds_broken_increment, bonds.size(),
+              max_iterations_source(config.fracture), i + 1, files, output.failures_csv_path(), kept(i)));
         }
         ++rec.break_iterations;
         double max_stretch = 0.0;
@@ -161,8 +243,9 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
           output.write_increment_vtu(model, i + 1, lambda, uv, failure->fields());
           throw Error(fmt::format(
               "increment {}/{} (load factor {}), bond-breaking iteration {}: {}. The displacement "
-              "before this iteration is written as increment {}; {}",
-              i + 1, total, lambda, rec.break_iterations, e.what(), i + 1, kept(i)));
+              "before this iteration is written as increment {} ({}); {}",
+              i + 1, total, lambda, rec.break_iterations, e.what(), i + 1,
+              output.writes_vtu() ? output.vtu_path(i + 1) : "no VTU: [output] vtu = false", kept(i)));
         }
         output.add_failed_bonds(model, i + 1, rec.break_iterations, bonds, failure->s_crit());
         solver.set_operator(A, model.dofmap.node_coordinates(), dim);
@@ -173,47 +256,11 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
         uv = u.to_std();
         for (std::size_t k = 0; k < uv.size(); ++k) work += lambda * F[k] * (uv[k] - u_before[k]);
       }
-      if (rec.break_iterations > 0) {
-        K.mult(u, internal);
-        fint = internal.to_std();
-      }
-      rec.bonds_broken = failure->broken().size();
-      rec.bonds_broken_increment = rec.bonds_broken - before;
-      rec.dissipated = failure->dissipated();
-      rec.dissipated_increment = rec.dissipated - dissipated_before;
-      rec.overshoot = failure->overshoot();
-      const CrackArea crack = failure->crack_area();
-      rec.crack_area = crack.projected;
-      rec.broken_face_area = crack.total;
-      rec.floating_parts = failure->floating_parts();
+      rec.bonds_broken_increment = failure->broken().size() - before;
+      rec.dissipated_increment = failure->dissipated() - dissipated_before;
     }
-    std::vector<double> reaction(fint);
-    for (std::size_t k = 0; k < reaction.size(); ++k) reaction[k] -= lambda * F[k];
-    double energy = 0.0;
-    for (std::size_t k = 0; k < uv.size(); ++k) energy += 0.5 * uv[k] * fint[k];
-    u_prev = uv;
-    fint_prev = fint;
-
-    rec.increment = i + 1;
-    rec.load_factor = lambda;
-    rec.reactions = sum_reactions(sets, reaction, dim);
-    rec.strain_energy = energy;
-    rec.external_work = work;
-    rec.iterations = summary.last_solve.iterations;
-    rec.relative_residual = summary.last_solve.relative_residual;
-    rec.wall_time = std::chrono::duration<double>(clock::now() - start).count();
-    rec.released = failure ? work - energy - rec.dissipated - rec.overshoot : 0.0;
-    output.add_row(rec);
-    const int every = config.output.every;
-    if ((i + 1) % every == 0 || i + 1 == total)
-      output.write_increment_vtu(model, i + 1, lambda, uv, failure ? failure->fields() : FractureFields{});
-
+    record(false);
     summary.increments_done = i + 1;
-    summary.displacement = uv;
-    summary.reactions = rec.reactions;
-    summary.strain_energy = energy;
-    summary.external_work = work;
-    summary.history.push_back(rec);
     progress.update(i + 1,
                     failure ? fmt::format("{} its, {} bonds failed ({} iterations)", rec.iterations,
                                           rec.bonds_broken_increment, rec.break_iterations)

@@ -4,19 +4,43 @@
 // reactions, energies and fields. Later stages (bond breaking, damage,
 // adaptivity) plug into the same loop.
 
+#include "perimorph/driver/bond_failure.hpp"
+#include "perimorph/driver/boundary_conditions.hpp"
 #include "perimorph/driver/model.hpp"
 #include "perimorph/driver/run_output.hpp"
 #include "perimorph/la/linear_solver.hpp"
 
+#include <optional>
 #include <string>
 #include <vector>
+
+namespace perimorph::io {
+class ProgressLine;
+}
 
 namespace perimorph::driver {
 
 struct RunOptions {
   std::string output_directory;  ///< overrides the case's [output] directory if not empty
   bool quiet = false;            ///< no progress line
+  /// The progress line to continue (the caller's, which showed the set-up
+  /// before the run, so that its elapsed time counts from the program's
+  /// start); null: the run draws its own (unless quiet). Warnings go to it.
+  io::ProgressLine* progress = nullptr;
 };
+
+/// What a run needs besides the stiffness, built from the case before any
+/// assembly, so that a case error stops `run` early and `check` finds every
+/// error `run` would find before solving: the constraints, the loads, the
+/// reaction sets and, with [fracture], the bond-failure set-up (critical
+/// stretch, no_fail regions). Throws InputError naming the case-file entry.
+struct RunSetup {
+  DirichletData bc;
+  std::vector<double> F;  ///< external force at load factor 1
+  std::vector<ReactionSet> sets;
+  std::optional<BondFailure> failure;  ///< with [fracture]
+};
+RunSetup prepare_run(const Model& model);
 
 struct RunSummary {
   int increments_done = 0;
@@ -35,8 +59,12 @@ struct RunSummary {
 std::string resolve_output_directory(const casefile::CaseConfig& config, const RunOptions& options);
 
 /// Runs every increment. PETSc options of the case are inserted first (the
-/// command line keeps precedence). On a solver failure throws SolverError
-/// saying which increment failed; what was computed before stays on disk.
+/// command line keeps precedence); after the first solve, options that PETSc
+/// did not use are reported as a warning (la::unused_options). On a solver
+/// failure throws SolverError saying which increment failed; what was computed
+/// before stays on disk. With [fracture], an increment that still breaks bonds
+/// after max_iterations iterations stops the run (Error): its state after the
+/// last iteration is written (CSV row and VTU) and the message names the files.
 RunSummary run_static(const Model& model, const RunOptions& options);
 
 }  // namespace perimorph::driver

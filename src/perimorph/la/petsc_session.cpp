@@ -48,6 +48,21 @@ void add_options(const std::string& options) {
   }
 }
 
+std::vector<std::string> unused_options() {
+  PetscInt n = 0;
+  char** names = nullptr;
+  char** values = nullptr;
+  PM_PETSC(PetscOptionsLeftGet(nullptr, &n, &names, &values));
+  std::vector<std::string> out;
+  for (PetscInt i = 0; i < n; ++i) {
+    const std::string name = names[i];
+    if (name == "options_left") continue;
+    out.push_back(values[i] != nullptr ? fmt::format("-{} {}", name, values[i]) : "-" + name);
+  }
+  PM_PETSC(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
+  return out;
+}
+
 int world_size() {
   PetscMPIInt size = 1;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);

@@ -5,6 +5,7 @@
 // precedence than the command line.
 
 #include <string>
+#include <vector>
 
 namespace perimorph::la {
 
@@ -21,6 +22,13 @@ class PetscSession {
 /// already set (from the command line) keep their value. Throws InputError with
 /// PETSc's message if the string cannot be parsed.
 void add_options(const std::string& options);
+
+/// The options in PETSc's database that nothing has read so far, each as
+/// "-name" or "-name value", in PETSc's order. Call it after the solver has
+/// read its options (after the first solve: preconditioner set-up reads some)
+/// to find misspelt options and options of a solver not in use. `-options_left`
+/// is left out: PETSc reads it at PetscFinalize and reports on its own.
+std::vector<std::string> unused_options();
 
 /// Number of MPI ranks in PETSC_COMM_WORLD.
 int world_size();

@@ -1,0 +1,20 @@
+# Fails (FATAL_ERROR) when a source outside src/perimorph/la/ includes a PETSc header: only la/ may
+# (README.md layout; the rest of the code is unit-testable without PETSc).
+#   cmake -DSOURCE_DIR=<repo> -P check_petsc_includes.cmake
+file(GLOB_RECURSE sources ${SOURCE_DIR}/src/*.hpp ${SOURCE_DIR}/src/*.cpp)
+set(offenders "")
+foreach(f ${sources})
+  if(f MATCHES "/src/perimorph/la/")
+    continue()
+  endif()
+  file(STRINGS ${f} hits REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"](petsc|mpi)[^>\"]*[>\"]")
+  if(hits)
+    list(APPEND offenders "${f}: ${hits}")
+  endif()
+endforeach()
+if(offenders)
+  string(REPLACE ";" "\n  " text "${offenders}")
+  message(FATAL_ERROR "PETSc/MPI headers included outside src/perimorph/la/:\n  ${text}")
+endif()
+list(LENGTH sources n)
+message(STATUS "only la/ includes PETSc: checked ${n} files")
