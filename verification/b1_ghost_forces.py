@@ -18,7 +18,7 @@ import sys
 
 import numpy as np
 
-from pmverify import CaseTemplate, RunSpec, case_main, fmt, pct
+from pmverify import CaseTemplate, RunSpec, case_main, fmt, pct, pyplot
 from pmverify.fields import last_cells, read_csv
 from pmverify.reference import bar_1d, kernels
 from pmverify.report import Report
@@ -348,9 +348,7 @@ def run(ctx):
 
 
 def figure_thesis(path, profiles, cont, M, fine):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     fig, ax = plt.subplots(3, len(profiles), figsize=(4.8 * len(profiles), 10.5), squeeze=False)
     xl = (A0 - 1.0, A0 + LC + 2 * DELTA)
     style = {"morphing": ("tab:blue", "-", "o"), "partition": ("tab:red", "--", "x")}
@@ -391,9 +389,7 @@ def figure_thesis(path, profiles, cont, M, fine):
 
 
 def figure_studies(path, profiles, refines, scal_Lc, main, cut, M, slopes, cont):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     colors = {"heaviside": "tab:red", "linear": "tab:blue", "cubic": "tab:green"}
     marks = {"morphing": "o", "partition": "s"}
     fine, hs = refines[-1], np.array([DELTA / n for n in refines])

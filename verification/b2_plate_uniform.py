@@ -30,7 +30,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pmverify import CaseTemplate, Report, RunSpec, case_main, pct  # noqa: E402
+from pmverify import CaseTemplate, Report, RunSpec, case_main, pct, pyplot  # noqa: E402
 from pmverify.fields import last_cells, read_csv  # noqa: E402
 from pmverify.reference import alpha as ref_alpha, kernels  # noqa: E402
 from pmverify.reference.ghost_force import ghost_force  # noqa: E402
@@ -343,9 +343,7 @@ def disk_reason(plate, A, spread, q):
 
 
 def figures(rep, plate, A, F, S):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     q, s, c = plate.q, plate.size, plate.c
     th = np.linspace(0, 2 * np.pi, 200)
     fig, ax = plt.subplots(2, 3, figsize=(15, 9.4))
@@ -363,9 +361,7 @@ def figures(rep, plate, A, F, S):
                  "ring; each panel its own colour scale)", fontsize=11)
     fig.tight_layout(rect=(0, 0, 1, 0.96))
     path = rep.figure_path("maps")
-    fig.savefig(path, dpi=75)
-    plt.close(fig)
-    rep.figure(path, "Error maps per loading and profile (ours). The thesis' figs. 2.10 (extension) and 2.12 (shear) "
+    rep.save_figure(fig, path, dpi=75, caption="Error maps per loading and profile (ours). The thesis' figs. 2.10 (extension) and 2.12 (shear) "
                "show the same maps: perturbations near the upper and lower parts of the morphing ring, all below "
                "0.5 % in magnitude, symmetric in x and y for shear.")
 
@@ -408,9 +404,7 @@ def figures(rep, plate, A, F, S):
         a.legend(fontsize=7)
     fig.tight_layout()
     path = rep.figure_path("profiles")
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
-    rep.figure(path, "Error along the vertical centre line (ours), beside what the thesis' figs. 2.11 (extension) and "
+    rep.save_figure(fig, path, dpi=80, caption="Error along the vertical centre line (ours), beside what the thesis' figs. 2.11 (extension) and "
                "2.13 (shear) show: the heaviside profile shakes violently in the middle of the ring where α jumps, the "
                "linear one has two peaks at the ring's borders, the cubic one changes smoothly across it; all below "
                "0.5 %, the shear peaks lower than the extension ones.")

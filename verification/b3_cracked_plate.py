@@ -26,7 +26,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pmverify import CaseTemplate, Report, RunSpec, case_main, pct  # noqa: E402
+from pmverify import CaseTemplate, Report, RunSpec, case_main, pct, pyplot  # noqa: E402
 from pmverify.fields import last_cells, read_csv  # noqa: E402
 from pmverify.reference import alpha as ref_alpha, kernels  # noqa: E402
 from pmverify.reference.ghost_force import ghost_force  # noqa: E402
@@ -239,9 +239,7 @@ def run(ctx):
 
 
 def figure(rep, plate, P, peak, hn, ln):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     s, tip = plate.size, plate.tip
     th = np.linspace(0, 2 * np.pi, 200)
     fig, ax = plt.subplots(2, 3, figsize=(17, 10.5))
@@ -284,9 +282,7 @@ def figure(rep, plate, P, peak, hn, ln):
                  "hybrid's transition ring)", fontsize=12)
     fig.tight_layout(rect=(0, 0, 1, 0.97))
     path = rep.figure_path("")
-    fig.savefig(path, dpi=75)
-    plt.close(fig)
-    rep.figure(path, "Ours: ε_xx maps of the three models (a–c), their differences (d, e) and ε_xx along the crack "
+    rep.save_figure(fig, path, dpi=75, caption="Ours: ε_xx maps of the three models (a–c), their differences (d, e) and ε_xx along the crack "
                "line ahead of the tip (f). The thesis' fig. 2.15 shows the three maps: the local one 'totally "
                "different' at the crack, hybrid and non-local alike; its fig. 2.16 plots ε_xx along the crack line for "
                "the hybrid and the non-local model: the two curves lie on each other but for a sudden drop of the "

@@ -23,7 +23,7 @@ import sys
 
 import numpy as np
 
-from pmverify import CaseTemplate, RunSpec, case_main, fmt, pct
+from pmverify import CaseTemplate, RunSpec, case_main, fmt, pct, pyplot
 from pmverify.fields import last_cells, read_csv
 from pmverify.reference import alpha as ref_alpha, anisotropy, kernels
 from pmverify.reference.ghost_force import ghost_force
@@ -367,9 +367,7 @@ def run(ctx):
 
 
 def figures(rep, F, key, cells, loads):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     fig, axes = plt.subplots(len(loads), 3, figsize=(15, 4.6 * len(loads)), squeeze=False)
     for i, ld in enumerate(loads):
         maps = []
@@ -408,9 +406,7 @@ def figures(rep, F, key, cells, loads):
         ax.set_title("error along the vertical centre line")
     fig.tight_layout()
     path = rep.figure_path("")
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
-    rep.figure(path, "Relative strain error on the slice y = 0.5 (black: ±0.3 % contours; dashed circles: the "
+    rep.save_figure(fig, path, dpi=80, caption="Relative strain error on the slice y = 0.5 (black: ±0.3 % contours; dashed circles: the "
                "transition shell) for the isotropic and orthotropic materials, and along the vertical centre line. "
                "The thesis (images not available) shows the slice y = 0.5 of the ε_zz error in extension (fig. 2.18 "
                "b, d) and the plane through the z axis and the line x = y of the ε_yz error in shear (fig. 2.19 b, d): "

@@ -20,7 +20,7 @@ import sys
 
 import numpy as np
 
-from pmverify import CaseTemplate, RunSpec, case_main, pct
+from pmverify import CaseTemplate, RunSpec, case_main, pct, pyplot
 from pmverify.fields import last_cells, read_csv
 from pmverify.reference import alpha as ref_alpha, anisotropy, kernels
 from pmverify.reference.ghost_force import ghost_force
@@ -160,7 +160,7 @@ def run(ctx):
     sets = {"whole slice": np.ones_like(Xs, bool),
             f"{2 * DELTA:g} < x, z < {1 - 2 * DELTA:g}": np.all([(v > 2 * DELTA) & (v < 1 - 2 * DELTA)
                                                                 for v in (Xs, Zs)], axis=0),
-            f"within 2δ of the front": np.hypot(Xs - FRONT[0], Zs - FRONT[2]) < 2 * DELTA}
+            "within 2δ of the front": np.hypot(Xs - FRONT[0], Zs - FRONT[2]) < 2 * DELTA}
     pairs = [("hybrid", "frame"), ("frame", "nonlocal"), ("hybrid", "nonlocal"), ("local", "nonlocal"),
              ("local", "frame")]
     rows = []
@@ -184,9 +184,7 @@ def run(ctx):
 
 
 def figure(rep, sl, xc):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     fig, axes = plt.subplots(1, 4, figsize=(20, 4.8))
     lim = max(np.abs(sl[m][..., 0]).max() for m in MODELS) * 1e3
     for ax, m in zip(axes, MODELS):
@@ -203,9 +201,7 @@ def figure(rep, sl, xc):
         fig.colorbar(im, ax=ax, fraction=0.046)
     fig.tight_layout()
     path = rep.figure_path("")
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
-    rep.figure(path, f"ε_xx on the slice y = {Y_SLICE:g} (black: the crack; dashed: the hybrid's α = 1 cylinder and "
+    rep.save_figure(fig, path, dpi=80, caption=f"ε_xx on the slice y = {Y_SLICE:g} (black: the crack; dashed: the hybrid's α = 1 cylinder and "
                "the end of its transition, the frame's α = 1 box). The thesis' fig. 2.22 (image not available) shows "
                "the same slice for (a) the local, (b) the hybrid and (c) the non-local model: (b) and (c) similar, "
                "(a) different near the front; fig. 2.21 adds that the hybrid and non-local fields differ only at the "

@@ -14,5 +14,5 @@ lives here once:
 
 from .program import Program, RunSpec, RunResult  # noqa: F401
 from .template import CaseTemplate  # noqa: F401
-from .report import Criterion, Report, md_table, fmt, pct  # noqa: F401
+from .report import Criterion, Report, md_table, fmt, pct, pyplot  # noqa: F401
 from .suite import Context, case_main  # noqa: F401

@@ -49,6 +49,14 @@ class Criterion:
         return self.passed is False and not self.reason
 
 
+def pyplot():
+    """matplotlib.pyplot on the file-only Agg backend (the scripts run without a display)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
 def fmt(v, spec=".4g"):
     if v is None or (isinstance(v, float) and math.isnan(v)):
         return "—"
@@ -120,6 +128,12 @@ class Report:
 
     def figure(self, path, caption):
         self.figures.append((os.path.basename(path), caption))
+
+    def save_figure(self, fig, path, caption, dpi=80):
+        """Saves a matplotlib figure to `path` (from figure_path), closes it and adds it with its caption."""
+        fig.savefig(path, dpi=dpi)
+        pyplot().close(fig)
+        self.figure(path, caption)
 
     # ------------------------------------------------------------------ output
     @property
