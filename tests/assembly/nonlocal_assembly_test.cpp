@@ -2,9 +2,11 @@
 // change the cost, not the matrix: the plain version (points recomputed per
 // pair) equals the precomputed one bit for bit; the α ≡ 1 shortcut and the
 // translation cache agree to round-off. Checked with the plain cut-off and
-// with partial-volume bonds, on a hybrid 3D block with a pre-crack cut.
+// with partial-volume bonds, on a hybrid 3D block with a pre-crack cut; the
+// bond count `perimorph info` prints is the count the stiffness sums.
 
 #include "perimorph/assembly/nonlocal_assembly.hpp"
+#include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/driver/model.hpp"
 #include "support/cases.hpp"
 #include "support/dense_inserter.hpp"
@@ -26,21 +28,26 @@ Eigen::MatrixXd assemble(const driver::Model& m, const assembly::NonlocalOptions
   return K.A;
 }
 
+/// A hybrid 3D block with a pre-crack cut: α ≡ 1 on the 8 cells about
+/// (1.0, 0.5, 0.25), whose pairs go through the translation cache; the cut
+/// (plane x = 0.125, y < 0.5) is far enough from them.
+driver::Model cut_block(casefile::HorizonEdge edge) {
+  auto c = testing::box_case(3, {10, 8, 4}, Vec3(1.25, 1.0, 0.5), 90.0, 0.25);
+  testing::add_nonlocal(c, casefile::KernelKind::exponential, 0.3, 0.06, 2);
+  c.nonlocal.horizon_edge = edge;
+  c.alpha.regions = {testing::alpha_ball(Vec3(1.0, 0.5, 0.25), 0.25, 0.15)};
+  casefile::CutSpec cut;
+  cut.origin = Vec3(0.125, 0.0, 0.0);
+  cut.edge1 = Vec3(0.0, 0.5, 0.0);
+  cut.edge2 = Vec3(0.0, 0.0, 0.5);
+  c.mesh.cuts = {cut};
+  return driver::build_model(c);
+}
+
 TEST(AssemblyNonlocal, OptimizationsDoNotChangeTheMatrix) {
   for (auto edge : {casefile::HorizonEdge::cutoff, casefile::HorizonEdge::partial_volume}) {
     SCOPED_TRACE(edge == casefile::HorizonEdge::cutoff ? "cutoff" : "partial volume");
-    auto c = testing::box_case(3, {10, 8, 4}, Vec3(1.25, 1.0, 0.5), 90.0, 0.25);
-    testing::add_nonlocal(c, casefile::KernelKind::exponential, 0.3, 0.06, 2);
-    c.nonlocal.horizon_edge = edge;
-    // α ≡ 1 on the 8 cells about (1.0, 0.5, 0.25): those pairs go through the
-    // cache; the cut (plane x = 0.125, y < 0.5) is far enough from them.
-    c.alpha.regions = {testing::alpha_ball(Vec3(1.0, 0.5, 0.25), 0.25, 0.15)};
-    casefile::CutSpec cut;
-    cut.origin = Vec3(0.125, 0.0, 0.0);
-    cut.edge1 = Vec3(0.0, 0.5, 0.0);
-    cut.edge2 = Vec3(0.0, 0.0, 0.5);
-    c.mesh.cuts = {cut};
-    const auto m = driver::build_model(c);
+    const auto m = cut_block(edge);
     assembly::NonlocalOptions plain{false, false, false}, points{true, false, false}, all{};
     const Eigen::MatrixXd A = assemble(m, plain), B = assemble(m, points);
     assembly::NonlocalStats stats;
@@ -51,6 +58,25 @@ TEST(AssemblyNonlocal, OptimizationsDoNotChangeTheMatrix) {
     EXPECT_GT(scale, 0.0);
     EXPECT_LT((A - C).cwiseAbs().maxCoeff(), 1e-13 * scale);
     EXPECT_GT(stats.reused_pairs, 0u) << "the cache was not exercised";
+  }
+}
+
+// The bond count of `perimorph info` (assembly::count_bonds) is the count of
+// the bonds the non-local stiffness sums, with either edge rule, and differs
+// from the count of interacting cell pairs.
+TEST(AssemblyNonlocal, BondCountIsWhatTheStiffnessSums) {
+  for (auto edge : {casefile::HorizonEdge::cutoff, casefile::HorizonEdge::partial_volume}) {
+    SCOPED_TRACE(edge == casefile::HorizonEdge::cutoff ? "cutoff" : "partial volume");
+    const auto m = cut_block(edge);
+    const auto& nl = *m.nonlocal;
+    const assembly::NonlocalSpace space{m.mesh, m.dofmap, nl.points, nl.graph, nl.kernel, &nl.alpha, m.scale};
+    assembly::NonlocalStats stats;
+    assemble(m, {false, false, false}, &stats);
+    const auto count = assembly::count_bonds(space);
+    EXPECT_GT(count.bonds, 0u);
+    EXPECT_EQ(count.bonds, stats.bonds);
+    EXPECT_EQ(count.cell_pairs, stats.cell_pairs);
+    EXPECT_GT(count.bonds, nl.graph.num_pairs());
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/bonds/nonlocal_points.hpp"
+#include "perimorph/core/dim_dispatch.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/dofs/dof_map.hpp"
 #include "perimorph/mesh/mesh.hpp"
@@ -198,47 +199,19 @@ BondCount count_bonds_dim(const NonlocalSpace& s) {
 }  // namespace
 
 bool has_intact_bond(const NonlocalSpace& space, Index e, Index f) {
-  switch (space.mesh.dim()) {
-    case 1:
-      return has_intact_bond_dim<1>(space, e, f);
-    case 2:
-      return has_intact_bond_dim<2>(space, e, f);
-    default:
-      return has_intact_bond_dim<3>(space, e, f);
-  }
+  return dispatch_dim(space.mesh.dim(), [&](auto D) { return has_intact_bond_dim<D()>(space, e, f); });
 }
 
 BondCount count_bonds(const NonlocalSpace& space) {
-  switch (space.mesh.dim()) {
-    case 1:
-      return count_bonds_dim<1>(space);
-    case 2:
-      return count_bonds_dim<2>(space);
-    default:
-      return count_bonds_dim<3>(space);
-  }
+  return dispatch_dim(space.mesh.dim(), [&](auto D) { return count_bonds_dim<D()>(space); });
 }
 
 std::vector<std::array<Index, 2>> bonded_pairs(const NonlocalSpace& space) {
-  switch (space.mesh.dim()) {
-    case 1:
-      return bonded_pairs_dim<1>(space);
-    case 2:
-      return bonded_pairs_dim<2>(space);
-    default:
-      return bonded_pairs_dim<3>(space);
-  }
+  return dispatch_dim(space.mesh.dim(), [&](auto D) { return bonded_pairs_dim<D()>(space); });
 }
 
 std::vector<InterfaceBonds> interface_bonds(const NonlocalSpace& space) {
-  switch (space.mesh.dim()) {
-    case 1:
-      return interface_bonds_dim<1>(space);
-    case 2:
-      return interface_bonds_dim<2>(space);
-    default:
-      return interface_bonds_dim<3>(space);
-  }
+  return dispatch_dim(space.mesh.dim(), [&](auto D) { return interface_bonds_dim<D()>(space); });
 }
 
 std::vector<Vec3> point_displacements(const NonlocalSpace& s, std::span<const double> u) {
@@ -265,25 +238,11 @@ std::vector<Vec3> point_displacements(const NonlocalSpace& s, std::span<const do
 
 std::vector<StretchedBond> bonds_over(const NonlocalSpace& space, std::span<const double> u,
                                       double threshold) {
-  switch (space.mesh.dim()) {
-    case 1:
-      return bonds_over_dim<1>(space, u, threshold);
-    case 2:
-      return bonds_over_dim<2>(space, u, threshold);
-    default:
-      return bonds_over_dim<3>(space, u, threshold);
-  }
+  return dispatch_dim(space.mesh.dim(), [&](auto D) { return bonds_over_dim<D()>(space, u, threshold); });
 }
 
 BondWeights point_bond_weights(const NonlocalSpace& space) {
-  switch (space.mesh.dim()) {
-    case 1:
-      return point_bond_weights_dim<1>(space);
-    case 2:
-      return point_bond_weights_dim<2>(space);
-    default:
-      return point_bond_weights_dim<3>(space);
-  }
+  return dispatch_dim(space.mesh.dim(), [&](auto D) { return point_bond_weights_dim<D()>(space); });
 }
 
 }  // namespace perimorph::assembly

@@ -1,5 +1,6 @@
 #include "perimorph/assembly/local_assembly.hpp"
 
+#include "perimorph/core/dim_dispatch.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/dofs/dof_map.hpp"
 #include "perimorph/fem/constitutive_field.hpp"
@@ -156,42 +157,30 @@ std::vector<double> strain_at_dim(const LocalSpace& s, Index c, const Vec3& xi, 
   return {eps.data(), eps.data() + fem::voigt_dim<D>};
 }
 
-template <class F>
-decltype(auto) dispatch(int dim, F&& f) {
-  switch (dim) {
-    case 1:
-      return f(std::integral_constant<int, 1>{});
-    case 2:
-      return f(std::integral_constant<int, 2>{});
-    default:
-      return f(std::integral_constant<int, 3>{});
-  }
-}
-
 }  // namespace
 
 void assemble_elasticity(const LocalSpace& space, const fem::ConstitutiveField& C, MatrixInserter& K,
                          const std::function<bool(Index)>& include) {
-  dispatch(space.mesh.dim(), [&](auto D) { assemble_elasticity_dim<D()>(space, C, K, include); });
+  dispatch_dim(space.mesh.dim(), [&](auto D) { assemble_elasticity_dim<D()>(space, C, K, include); });
 }
 
 void assemble_body_force(const LocalSpace& space, const std::function<Vec3(const Vec3&)>& b,
                          std::span<double> F) {
-  dispatch(space.mesh.dim(), [&](auto D) { assemble_body_force_dim<D()>(space, b, F); });
+  dispatch_dim(space.mesh.dim(), [&](auto D) { assemble_body_force_dim<D()>(space, b, F); });
 }
 
 void assemble_traction(const LocalSpace& space, std::span<const mesh::CellFace> faces, const Vec3& t,
                        std::span<double> F) {
-  dispatch(space.mesh.dim(), [&](auto D) { assemble_traction_dim<D()>(space, faces, t, F); });
+  dispatch_dim(space.mesh.dim(), [&](auto D) { assemble_traction_dim<D()>(space, faces, t, F); });
 }
 
 CellFields cell_strain_stress(const LocalSpace& space, const fem::ConstitutiveField& C,
                               std::span<const double> u) {
-  return dispatch(space.mesh.dim(), [&](auto D) { return cell_strain_stress_dim<D()>(space, C, u); });
+  return dispatch_dim(space.mesh.dim(), [&](auto D) { return cell_strain_stress_dim<D()>(space, C, u); });
 }
 
 std::vector<double> strain_at(const LocalSpace& space, Index c, const Vec3& xi, std::span<const double> u) {
-  return dispatch(space.mesh.dim(), [&](auto D) { return strain_at_dim<D()>(space, c, xi, u); });
+  return dispatch_dim(space.mesh.dim(), [&](auto D) { return strain_at_dim<D()>(space, c, xi, u); });
 }
 
 }  // namespace perimorph::assembly

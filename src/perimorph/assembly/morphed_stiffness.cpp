@@ -2,6 +2,7 @@
 
 #include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/bonds/nonlocal_points.hpp"
+#include "perimorph/core/dim_dispatch.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/fem/constitutive_field.hpp"
 #include "perimorph/fem/material.hpp"
@@ -23,16 +24,14 @@ std::vector<std::array<int, 2>> voigt_pairs(int dim) {
 }
 
 Vec3 box_half_widths(const mesh::Mesh& mesh, Index c, const Vec3& xi, const Vec3& line_weights) {
-  auto box = [&]<int D>() {
+  return dispatch_dim(mesh.dim(), [&](auto dim) {
+    constexpr int D = dim();
     fem::NodeCoords<D> X;
     const auto nodes = mesh.cell(c);
     for (int a = 0; a < fem::q1_nodes<D>; ++a)
       X.col(a) = mesh.node(nodes[static_cast<std::size_t>(a)]).template head<D>();
     return fem::q1_point_box_half_widths<D>(X, xi, line_weights);
-  };
-  if (mesh.dim() == 1) return box.template operator()<1>();
-  if (mesh.dim() == 2) return box.template operator()<2>();
-  return box.template operator()<3>();
+  });
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include "perimorph/bonds/broken_bonds.hpp"
 #include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/bonds/nonlocal_points.hpp"
+#include "perimorph/core/dim_dispatch.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/dofs/dof_map.hpp"
 #include "perimorph/fem/quadrature.hpp"
@@ -238,14 +239,7 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
 
 NonlocalStats assemble_nonlocal(const NonlocalSpace& space, MatrixInserter& K,
                                 const NonlocalOptions& options) {
-  switch (space.mesh.dim()) {
-    case 1:
-      return assemble_dim<1>(space, K, options);
-    case 2:
-      return assemble_dim<2>(space, K, options);
-    default:
-      return assemble_dim<3>(space, K, options);
-  }
+  return dispatch_dim(space.mesh.dim(), [&](auto D) { return assemble_dim<D()>(space, K, options); });
 }
 
 }  // namespace perimorph::assembly

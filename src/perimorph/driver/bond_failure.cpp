@@ -1,6 +1,7 @@
 #include "perimorph/driver/bond_failure.hpp"
 
 #include "perimorph/bonds/nonlocal_points.hpp"
+#include "perimorph/core/dim_dispatch.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/dofs/dof_map.hpp"
 #include "perimorph/driver/floating_parts.hpp"
@@ -101,15 +102,8 @@ FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bon
         for (int d = 0; d < dim; ++d) dofs.push_back(node * dim + d);
     const std::size_t m = dofs.size();
     block.assign(m * m, 0.0);
-    auto kernel = [&]<int D>() {
-      peridynamics::bond_block<D>(Ng, nE, Nh, nF, same, b.xi, b.k, block.data());
-    };
-    if (dim == 1)
-      kernel.template operator()<1>();
-    else if (dim == 2)
-      kernel.template operator()<2>();
-    else
-      kernel.template operator()<3>();
+    dispatch_dim(
+        dim, [&](auto D) { peridynamics::bond_block<D()>(Ng, nE, Nh, nF, same, b.xi, b.k, block.data()); });
     negative.resize(m * m);
     for (std::size_t i = 0; i < m * m; ++i) negative[i] = -block[i];
     K.add(dofs, dofs, negative);
