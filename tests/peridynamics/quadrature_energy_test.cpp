@@ -239,20 +239,21 @@ TEST(PeridynamicsQuadratureEnergy, BenchmarkSettingsComponentErrors) {
   // The revised BENCHMARKS.md: B2/B3 use the thesis' l = 0.1 µm = δ/26.25 with
   // 6×6 points (4×4 reported); B4 l = δ/5 and δ/10; B5 l = δ/10; B6 the
   // gaussian l = δ/3 with 2×2×2 points at δ/h = 1 … 2.5.
-  const Setting settings[] = {{"B2 6x6 exponential l=δ/26", 2, 3.5, 6, KernelShape::exponential, 0.1 / 2.625},
-                              {"B2 4x4 exponential l=δ/26", 2, 3.5, 4, KernelShape::exponential, 0.1 / 2.625},
-                              {"B2 4x4 exponential l=δ/5", 2, 3.5, 4, KernelShape::exponential, 0.2},
-                              {"B4 3x3x3 exponential l=δ/5", 3, 3.0, 3, KernelShape::exponential, 0.2},
-                              {"B4 4x4x4 exponential l=δ/5", 3, 3.0, 4, KernelShape::exponential, 0.2},
-                              {"B4/B5 3x3x3 exponential l=δ/10", 3, 3.0, 3, KernelShape::exponential, 0.1},
-                              {"B6 2x2x2 gaussian l=δ/3 h=δ/2", 3, 2.0, 2, KernelShape::gaussian, 1.0 / 3.0},
-                              {"B6 2x2x2 gaussian l=δ/3 h=0.4δ", 3, 2.5, 2, KernelShape::gaussian, 1.0 / 3.0}};
+  const Setting settings[] = {
+      {"B2 6x6 exponential l=δ/26", 2, 3.5, 6, KernelShape::exponential, 0.1 / 2.625},
+      {"B2 4x4 exponential l=δ/26", 2, 3.5, 4, KernelShape::exponential, 0.1 / 2.625},
+      {"B2 4x4 exponential l=δ/5", 2, 3.5, 4, KernelShape::exponential, 0.2},
+      {"B4 3x3x3 exponential l=δ/5", 3, 3.0, 3, KernelShape::exponential, 0.2},
+      {"B4 4x4x4 exponential l=δ/5", 3, 3.0, 4, KernelShape::exponential, 0.2},
+      {"B4/B5 3x3x3 exponential l=δ/10", 3, 3.0, 3, KernelShape::exponential, 0.1},
+      {"B6 2x2x2 gaussian l=δ/3 h=δ/2", 3, 2.0, 2, KernelShape::gaussian, 1.0 / 3.0},
+      {"B6 2x2x2 gaussian l=δ/3 h=0.4δ", 3, 2.5, 2, KernelShape::gaussian, 1.0 / 3.0}};
   std::printf("\n| setting | edge | xxxx | xxyy | shear xyxy | E_uniax |\n|---|---|---|---|---|---|\n");
   for (const Setting& s : settings)
     for (const bool partial : {false, true}) {
       const auto e = measure(s.dim, s.ratio, s.shape, s.l_over_delta, s.order, partial);
-      std::printf("| %s | %s | %+.2e | %+.2e | %+.2e | %+.2e |\n", s.name, partial ? "partial volume" : "cut-off",
-                  e.normal, e.cross, e.shear, e.uniaxial);
+      std::printf("| %s | %s | %+.2e | %+.2e | %+.2e | %+.2e |\n", s.name,
+                  partial ? "partial volume" : "cut-off", e.normal, e.cross, e.shear, e.uniaxial);
       // Central forces on a lattice of cubic symmetry: D̄ keeps the Cauchy relation
       // D̄_xxyy = D̄_xyxy exactly (up to round-off), so the cross and shear errors coincide.
       EXPECT_NEAR(e.cross, e.shear, 1e-12) << s.name;
