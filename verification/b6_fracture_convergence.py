@@ -309,7 +309,10 @@ def run(ctx):
         "Solvers: the case's (CG + GAMG built once and reused after failures, rtol "
         f"{TEMPLATE.get('solver.rtol'):g}; fallbacks " + ", then ".join(" ".join(a) for _, a in FALLBACKS)
         + f" up to {CHOLESKY_MAX_DOFS} dofs), and for the N_i study (C1) tight solves: `{TIGHT['solver.petsc_options']}` "
-        f"(GAMG rebuilt at every solve), rtol {TIGHT['solver.rtol']:g}.")
+        f"(GAMG rebuilt at every solve), rtol {TIGHT['solver.rtol']:g}.",
+        *(["Reduced size (CI): h = δ, N_i = 6 and 60, about 10 s: the checks K1–K7 of the program against the "
+           "independent reference, which hold at any size; C1, C2 and P2 need h ≤ δ/2 and N_i = 600 (hours)."]
+          if rep.ctx.reduced else []))
 
     # ---- checks of the program against the independent reference (every size)
     tol_print = lambda text: 0.5 * 10 ** (math.floor(math.log10(abs(float(text)))) - 6)   # noqa: E731
@@ -416,9 +419,11 @@ def full_criteria(rep, R, info, GC, IGC, c_ref):
         "(report)", "—", None,
         detail="BENCHMARKS' \"≈ 5–6 %, independent of h\" is the share of D held by bonds failed ahead of the last "
                "fully failed face, as the earlier study measured it (its report called them the process zone): here "
-               "the *front*. Counted as BENCHMARKS words it, bonds that do not cross the plane, the zone is empty "
-               "below h = δ: every failed bond of those runs has its ends on either side of y = 4δ (the failed-bond "
-               "files, checked bond by bond).")
+               "the *front*. Counted as BENCHMARKS words it, bonds that do not cross the plane (from the failed-bond "
+               "files, bond by bond), the zone is " + "; ".join(
+                   f"{'empty' if g['pz_bonds'] == 0 else str(round(g['pz_bonds'] * len(R[Case(m)].Db))) + ' bonds'} "
+                   f"at h = {m}" for m, g in G.items()) + ": below h = δ nearly every failed bond has its ends on "
+               "either side of y = 4δ.")
     rep.criterion("Gx", "G_app with only the failed bonds crossing the plane (D_cross / crack area) against G_eff, u_d",
                   "; ".join(f"h = {m}: {g['G_cross']:.4g} ({pct(g['err_cross'], '+.1f')})" for m, g in G.items()),
                   "(report: should converge to G_eff)", "—", None)
