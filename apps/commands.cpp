@@ -5,6 +5,7 @@
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/casefile/parse_case.hpp"
 #include "perimorph/core/error.hpp"
+#include "perimorph/driver/critical_stretch.hpp"
 #include "perimorph/driver/effective_gc.hpp"
 #include "perimorph/driver/ghost_forces.hpp"
 #include "perimorph/driver/model.hpp"

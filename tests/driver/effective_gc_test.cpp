@@ -376,32 +376,6 @@ TEST(EffectiveGc, AnisotropicKernelDependsOnThePlane) {
   EXPECT_GT(window[2], 1.2 * window[0]);
 }
 
-TEST(EffectiveGc, CriticalStretchComesFromTheOptionThenTheCase) {
-  using driver::StretchSource;
-  casefile::FractureSpec f;
-  const double kappa = 0.25;
-  auto s = driver::resolve_critical_stretch(f, kappa, std::nullopt);
-  EXPECT_EQ(s.source, StretchSource::unit);
-  EXPECT_EQ(s.value, 1.0);
-  f.enabled = true;
-  f.G_c = 1e-6;
-  s = driver::resolve_critical_stretch(f, kappa, std::nullopt);
-  EXPECT_EQ(s.source, StretchSource::case_G_c);
-  EXPECT_NEAR(kappa * s.value * s.value, f.G_c, 1e-20);
-  EXPECT_THROW(driver::resolve_critical_stretch(f, std::numeric_limits<double>::quiet_NaN(), std::nullopt),
-               InputError);
-  f.G_c = 0.0;
-  f.s_crit = 3e-3;
-  s = driver::resolve_critical_stretch(f, kappa, std::nullopt);
-  EXPECT_EQ(s.source, StretchSource::case_s_crit);
-  EXPECT_EQ(s.value, 3e-3);
-  s = driver::resolve_critical_stretch(f, kappa, 2e-3);
-  EXPECT_EQ(s.source, StretchSource::option);
-  EXPECT_EQ(s.value, 2e-3);
-  EXPECT_THROW(driver::resolve_critical_stretch(f, kappa, 0.0), InputError);
-  EXPECT_THROW(driver::resolve_critical_stretch(f, kappa, -1e-3), InputError);
-}
-
 /// The message of the InputError that `f` throws ("" if none).
 template <class F>
 std::string message_of(F&& f) {

@@ -4,6 +4,7 @@
 #include "perimorph/core/dim_dispatch.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/dofs/dof_map.hpp"
+#include "perimorph/driver/critical_stretch.hpp"
 #include "perimorph/driver/floating_parts.hpp"
 #include "perimorph/peridynamics/pair_kernel.hpp"
 
@@ -15,19 +16,6 @@
 #include <set>
 
 namespace perimorph::driver {
-
-double critical_stretch(const Model& model) {
-  const auto& spec = model.config.fracture;
-  PERIMORPH_ASSERT(spec.enabled && model.nonlocal, "critical_stretch needs [fracture] and [nonlocal]");
-  if (spec.s_crit > 0.0) return spec.s_crit;
-  const double kappa = model.nonlocal->calibration.gc_factor;
-  if (!(kappa > 0.0))
-    throw InputError(fmt::format(
-        "{}: G_c = {} cannot be turned into a critical stretch: the closed form G_c = kappa s_crit^2 (THEORY "
-        "§5) is only available for an isotropic kernel; give s_crit instead",
-        spec.where.describe(), spec.G_c));
-  return std::sqrt(spec.G_c / kappa);
-}
 
 BondFailure::BondFailure(const Model& model)
     : model_(model),

@@ -18,11 +18,6 @@
 
 namespace perimorph::driver {
 
-/// The critical stretch of a case: [fracture] s_crit, or from G_c by the bulk
-/// closed form G_c = κ s_crit² of the calibrated kernel (THEORY §5). Throws
-/// InputError when G_c is given and κ is not available (anisotropic kernel).
-double critical_stretch(const Model& model);
-
 /// `total`: the area of every broken face. `projected`: for each normal
 /// axis, the broken faces with that normal projected along it (a face position
 /// counted once however many rows of faces are broken there), the largest

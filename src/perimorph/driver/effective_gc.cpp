@@ -175,28 +175,6 @@ std::vector<CellSums> sum_bonds(const Model& model, const Vec3& point, const Vec
 
 }  // namespace
 
-CriticalStretch resolve_critical_stretch(const casefile::FractureSpec& fracture, double gc_factor,
-                                         std::optional<double> option) {
-  if (option) {
-    if (!(*option > 0.0) || !std::isfinite(*option))
-      throw InputError(
-          fmt::format("--s-crit must be a positive number (a critical bond stretch such as "
-                      "1e-3); got {}",
-                      *option));
-    return {*option, StretchSource::option};
-  }
-  if (fracture.enabled && fracture.s_crit > 0.0) return {fracture.s_crit, StretchSource::case_s_crit};
-  if (fracture.enabled && fracture.G_c > 0.0) {
-    if (!std::isfinite(gc_factor) || gc_factor <= 0.0)
-      throw InputError(fmt::format(
-          "{}: s_crit cannot follow from G_c = {} here: the bulk closed form G_c = kappa s_crit^2 is not "
-          "available (anisotropic kernel); give s_crit in [fracture] or --s-crit",
-          fracture.where.describe(), fracture.G_c));
-    return {std::sqrt(fracture.G_c / gc_factor), StretchSource::case_G_c};
-  }
-  return {1.0, StretchSource::unit};
-}
-
 double section_measure(int dim, const Vec3& lo, const Vec3& hi, const CrackPlane& plane) {
   for (int i = 0; i < dim; ++i)
     if (!(lo[i] < hi[i])) return 0.0;

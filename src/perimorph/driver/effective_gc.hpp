@@ -31,11 +31,9 @@
 // plane by ±ε); a bond with both ends on it does not cross. The window uses the
 // same rule per axis for crossing points on its border.
 
-#include "perimorph/casefile/case_config.hpp"
 #include "perimorph/core/types.hpp"
 
 #include <cstddef>
-#include <optional>
 #include <string>
 
 namespace perimorph::driver {
@@ -48,19 +46,6 @@ struct CrackPlane {
   Vec3 point = Vec3::Zero();
   Vec3 normal = Vec3::UnitX();
 };
-
-enum class StretchSource { option, case_s_crit, case_G_c, unit };
-
-struct CriticalStretch {
-  double value = 1.0;
-  StretchSource source = StretchSource::unit;  ///< unit: none given, figures are per s_crit²
-};
-
-/// s_crit from the option when given, else the case's [fracture] s_crit, else
-/// sqrt(G_c / κ) from its G_c, else 1. Throws InputError for an option ≤ 0 and
-/// for G_c with an anisotropic kernel (κ NaN).
-CriticalStretch resolve_critical_stretch(const casefile::FractureSpec& fracture, double gc_factor,
-                                         std::optional<double> option);
 
 /// Measure of the section of the box [lo, hi] (first `dim` axes) by the plane:
 /// an area in 3D, a length in 2D, 1 or 0 in 1D (the point strictly inside or
