@@ -1,4 +1,4 @@
-// Bonds through the end of a pre-crack cut: the cut is closed (mesh::Cut::crosses),
+// Bonds through the end of a pre-crack cut: the cut is closed (Cut::crosses),
 // and the decision must not depend on the round-off of the crossing point.
 // B6 (BENCHMARKS) ends its pre-crack at x = 4, where mirror-image bonds between
 // the Gauss points of the cells meet it exactly; before the tie margin, half
@@ -31,12 +31,12 @@ void check_ties(int dim, double h, int& ties) {
                 static_cast<Index>(dim == 3 ? std::lround(2.0 / h) : 1)};
   const mesh::Mesh m = mesh::make_box(spec);
   const auto pts = bonds::make_nonlocal_points(m, 2, 1.0, alpha::AlphaField::constant(1.0));
-  mesh::Cut cut;
+  Cut cut;
   cut.dim = dim;
   cut.origin = Vec3(0.0, 4.0, 0.0);
   cut.edge1 = Vec3(4.0, 0.0, 0.0);
   cut.edge2 = Vec3(0.0, 0.0, 2.0);
-  const std::vector<mesh::Cut> cuts{cut};
+  const std::vector<Cut> cuts{cut};
   // Only points near the edge matter: x in (3, 5), y in (3, 5).
   std::vector<Vec3> near;
   for (const Vec3& x : pts.x)

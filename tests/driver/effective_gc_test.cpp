@@ -226,7 +226,7 @@ TEST(EffectiveGc, OneDimensionalBarHasNoLateralFaces) {
 // the whole plane leaves nothing; a cut over either half leaves a bit less than
 // half: the bonds crossing the plane exactly at the cut's end (mirror pairs
 // about the cell face x = 2) touch the cut. Whether round-off puts such a
-// crossing a hair inside or outside the cut is mesh::Cut::crosses' business
+// crossing a hair inside or outside the cut is Cut::crosses' business
 // (the assembly uses the same test), so the two halves differ slightly and the
 // bonds through the common end may be cut by both.
 TEST(EffectiveGc, PreCrackCutRemovesItsBonds) {

@@ -94,7 +94,7 @@ Eigen::MatrixXd brute_force(const TestCell& E, const TestCell& F, bool same_cell
 
 template <int D>
 Eigen::MatrixXd kernel_block(const TestCell& E, const TestCell& F, bool same_cell, const Micromodulus& c,
-                             std::span<const mesh::Cut> cuts, bool unit_alpha, std::size_t& bonds) {
+                             std::span<const Cut> cuts, bool unit_alpha, std::size_t& bonds) {
   const int n = same_cell ? E.nodes_count() * D : (E.nodes_count() + F.nodes_count()) * D;
   std::vector<double> block(static_cast<std::size_t>(n * n), -7.0);  // garbage: the kernel must overwrite
   CellPoints e = E.view(), f = F.view();
@@ -267,9 +267,9 @@ TEST(PeridynamicsPairKernel, CutBetweenCellsRemovesCrossingBonds) {
   const TestCell F = quad(Vec3(1, 0, 0), 1.0, {1.0, 0.4, 0.7});
   const auto c = make_kernel(KernelShape::gaussian, 2.0, 2.0 / 3.0, 50.0);
   // A segment on x = 1 from y = y0 to y = y1; a bond a–b crosses it where the
-  // straight line meets x = 1 within [y0, y1] (independent of mesh::Cut).
+  // straight line meets x = 1 within [y0, y1] (independent of Cut).
   auto cut_on_x1 = [](double y0, double y1) {
-    return mesh::Cut{2, Vec3(1.0, y0, 0.0), Vec3(0.0, y1 - y0, 0.0), Vec3::Zero()};
+    return Cut{2, Vec3(1.0, y0, 0.0), Vec3(0.0, y1 - y0, 0.0), Vec3::Zero()};
   };
   auto crosses_x1 = [](double y0, double y1) {
     return [y0, y1](const Vec3& a, const Vec3& b) {
@@ -283,7 +283,7 @@ TEST(PeridynamicsPairKernel, CutBetweenCellsRemovesCrossingBonds) {
   kernel_block<2>(E, F, false, c, {}, false, n_uncut);
   ASSERT_EQ(n_uncut, 9u);
   {  // The whole interface: every E–F bond crosses, the block is zero; bonds inside E survive.
-    const std::vector<mesh::Cut> cuts{cut_on_x1(-1.0, 2.0)};
+    const std::vector<Cut> cuts{cut_on_x1(-1.0, 2.0)};
     const Eigen::MatrixXd K = kernel_block<2>(E, F, false, c, cuts, false, n);
     EXPECT_EQ(n, 0u);
     EXPECT_EQ(K.cwiseAbs().maxCoeff(), 0.0);
@@ -294,7 +294,7 @@ TEST(PeridynamicsPairKernel, CutBetweenCellsRemovesCrossingBonds) {
   }
   {  // Part of the interface: only the bonds through the segment go.
     const double y0 = 0.0, y1 = 0.5;
-    const std::vector<mesh::Cut> cuts{cut_on_x1(y0, y1)};
+    const std::vector<Cut> cuts{cut_on_x1(y0, y1)};
     const Eigen::MatrixXd K = kernel_block<2>(E, F, false, c, cuts, false, n);
     const Eigen::MatrixXd B = brute_force<2>(E, F, false, c, false, crosses_x1(y0, y1), nb);
     EXPECT_EQ(n, nb);
@@ -303,7 +303,7 @@ TEST(PeridynamicsPairKernel, CutBetweenCellsRemovesCrossingBonds) {
     EXPECT_LT(rel_diff(K, B), 1e-14);
   }
   {  // A cut elsewhere (x = 1, far above) removes nothing.
-    const std::vector<mesh::Cut> cuts{cut_on_x1(5.0, 6.0)};
+    const std::vector<Cut> cuts{cut_on_x1(5.0, 6.0)};
     const Eigen::MatrixXd K = kernel_block<2>(E, F, false, c, cuts, false, n);
     const Eigen::MatrixXd B = brute_force<2>(E, F, false, c, false, no_cut, nb);
     EXPECT_EQ(n, n_uncut);

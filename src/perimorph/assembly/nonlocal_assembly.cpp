@@ -141,7 +141,7 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
   };
   auto compute = [&](Index e, Index f, double* block) {
     const bool unit = options.unit_alpha_shortcut && unit_pair(e, f);
-    const auto cuts = near(e, f) ? std::span<const mesh::Cut>(s.mesh.cuts) : std::span<const mesh::Cut>{};
+    const auto cuts = near(e, f) ? std::span<const Cut>(s.mesh.cuts) : std::span<const Cut>{};
     if (!plain)
       return peridynamics::pair_stiffness<D>(cell_points(e), cell_points(f), e == f, s.kernel, cuts, unit,
                                              block, broken_in(e, f));

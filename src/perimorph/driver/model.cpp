@@ -67,7 +67,7 @@ mesh::Mesh build_mesh(const casefile::CaseConfig& config) {
   }
   for (const auto& c : config.mesh.cuts) {
     try {
-      mesh::split_along_cut(m, mesh::Cut{box.dim, c.origin, c.edge1, c.edge2});
+      mesh::split_along_cut(m, Cut{box.dim, c.origin, c.edge1, c.edge2});
     } catch (const InputError& e) {
       throw InputError(fmt::format("{}: {}", c.where.describe(), e.what()));
     }

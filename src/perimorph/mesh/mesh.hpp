@@ -3,6 +3,7 @@
 // and element sets. Nodes always carry three coordinates (unused ones are 0),
 // so geometry code is the same in every dimension.
 
+#include "perimorph/core/cut.hpp"
 #include "perimorph/core/types.hpp"
 #include "perimorph/mesh/cell_type.hpp"
 
@@ -20,26 +21,6 @@ struct CellFace {
   Index cell = 0;
   int face = 0;
   auto operator<=>(const CellFace&) const = default;
-};
-
-/// A planar cut kept as geometry after the nodes were split along it: the
-/// non-local model removes the bonds that cross it (THEORY §4). In 1D it is a
-/// point (origin), in 2D a segment (origin, origin + edge1), in 3D a
-/// parallelogram (origin + s edge1 + t edge2, s, t in [0, 1]).
-struct Cut {
-  int dim = 3;
-  Vec3 origin = Vec3::Zero();
-  Vec3 edge1 = Vec3::Zero();
-  Vec3 edge2 = Vec3::Zero();
-
-  /// Unit normal of the cut's line (2D, in the xy plane) or plane (3D); e_x in 1D.
-  Vec3 normal() const;
-  /// True if the open segment a–b crosses the closed cut (touching its
-  /// boundary counts as crossing, with a relative margin of 1e-12 of the edge
-  /// lengths so that round-off in the crossing point does not decide ties).
-  bool crosses(const Vec3& a, const Vec3& b) const;
-  /// True if p lies on the closed cut within tolerance tol (absolute length).
-  bool contains(const Vec3& p, double tol) const;
 };
 
 /// The layout of a structured box mesh: cell c = i + n0 (j + n1 k) is the box

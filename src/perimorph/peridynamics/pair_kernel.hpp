@@ -11,8 +11,8 @@
 //   K_FF += Σ_h N_h N_hᵀ ⊗ S_h,  S_h = Σ_g k G
 //   K_EF −= Σ_g N_g ⊗ U_g,       U_g = Σ_h k G N_hᵀ
 
+#include "perimorph/core/cut.hpp"
 #include "perimorph/core/types.hpp"
-#include "perimorph/mesh/mesh.hpp"
 #include "perimorph/peridynamics/horizon_edge.hpp"
 #include "perimorph/peridynamics/micromodulus.hpp"
 
@@ -66,7 +66,7 @@ double bond_micromodulus(const Micromodulus& c, const Vec3& xi, double r2, const
 }
 
 /// True if the bond x_g–x_h crosses one of the cuts (a pre-crack removes it).
-inline bool bond_cut(const Vec3& a, const Vec3& b, std::span<const mesh::Cut> cuts) {
+inline bool bond_cut(const Vec3& a, const Vec3& b, std::span<const Cut> cuts) {
   for (const auto& cut : cuts)
     if (cut.crosses(a, b)) return true;
   return false;
@@ -80,7 +80,7 @@ inline bool bond_cut(const Vec3& a, const Vec3& b, std::span<const mesh::Cut> cu
 /// Returns the number of bonds.
 template <int D>
 std::size_t pair_stiffness(const CellPoints& E, const CellPoints& F, bool same_cell, const Micromodulus& c,
-                           std::span<const mesh::Cut> cuts, bool unit_alpha, double* block,
+                           std::span<const Cut> cuts, bool unit_alpha, double* block,
                            std::span<const std::uint32_t> broken = {}) {
   const int nE = E.nodes, nF = F.nodes;
   const int n = same_cell ? nE * D : (nE + nF) * D;

@@ -1,0 +1,22 @@
+# Fails (FATAL_ERROR) when a source of the stage src/perimorph/${STAGE}/ includes a perimorph header from a
+# folder outside ${ALLOWED} (comma-separated) (README.md layout: dependencies between the stages point one way).
+#   cmake -DSOURCE_DIR=<repo> -DSTAGE=peridynamics -DALLOWED=core,fem,peridynamics -P check_stage_includes.cmake
+string(REPLACE "," ";" ALLOWED "${ALLOWED}")
+file(GLOB_RECURSE sources ${SOURCE_DIR}/src/perimorph/${STAGE}/*.hpp ${SOURCE_DIR}/src/perimorph/${STAGE}/*.cpp)
+set(offenders "")
+foreach(f ${sources})
+  file(STRINGS ${f} lines REGEX "^[ \t]*#[ \t]*include[ \t]*\"perimorph/[a-z_]+/")
+  foreach(line ${lines})
+    string(REGEX MATCH "perimorph/([a-z_]+)/" _ "${line}")
+    list(FIND ALLOWED "${CMAKE_MATCH_1}" allowed)
+    if(allowed EQUAL -1)
+      list(APPEND offenders "${f}: ${line}")
+    endif()
+  endforeach()
+endforeach()
+if(offenders)
+  string(REPLACE ";" "\n  " text "${offenders}")
+  message(FATAL_ERROR "src/perimorph/${STAGE}/ may include only ${ALLOWED}:\n  ${text}")
+endif()
+list(LENGTH sources n)
+message(STATUS "${STAGE}/ includes only ${ALLOWED}: checked ${n} files")
