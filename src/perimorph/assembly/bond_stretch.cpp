@@ -25,8 +25,7 @@ bool for_each_bond_of_pair(const NonlocalSpace& s, Index e, Index f, Visit&& vis
   const auto& pts = s.points;
   const int n = pts.per_cell;
   const bool partial = pts.partial_volume();
-  const double outer = pts.bond_reach(s.kernel.horizon);
-  const double delta2 = partial ? outer * outer : peridynamics::horizon_cutoff_squared(s.kernel.horizon);
+  const double reach2 = peridynamics::bond_reach_squared(s.kernel.horizon, partial, 2.0 * pts.half_bound);
   if (pts.cell_alpha_max[static_cast<std::size_t>(e)] + pts.cell_alpha_max[static_cast<std::size_t>(f)] <=
       0.0)
     return true;
@@ -37,13 +36,13 @@ bool for_each_bond_of_pair(const NonlocalSpace& s, Index e, Index f, Visit&& vis
       const std::size_t kh = pts.index(f, h);
       const Vec3 xi = pts.x[kh] - pts.x[kg];
       const double r2 = xi.squaredNorm();
-      if (r2 >= delta2 || r2 == 0.0) continue;
-      if (!s.mesh.cuts.empty() && peridynamics::bond_cut(pts.x[kg], pts.x[kh], s.mesh.cuts)) continue;
+      if (!peridynamics::within_reach(r2, reach2)) continue;
       const double abar = 0.5 * (pts.alpha[kg] + pts.alpha[kh]);
       if (abar == 0.0) continue;
-      const double cb =
-          partial ? peridynamics::bond_micromodulus<D>(s.kernel, xi, r2, &pts.half[kg], &pts.half[kh])
-                  : s.kernel.bond(xi, std::sqrt(r2));
+      const double cb = peridynamics::pair_bond<D>(s.kernel, pts.x[kg], pts.x[kh], xi, r2,
+                                                   partial ? &pts.half[kg] : nullptr,
+                                                   partial ? &pts.half[kh] : nullptr, s.mesh.cuts)
+                            .c_bond;
       if (cb == 0.0) continue;
       const bool failed = !broken.empty() && std::binary_search(broken.begin(), broken.end(),
                                                                 static_cast<std::uint32_t>(g * n + h));

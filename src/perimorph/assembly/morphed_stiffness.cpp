@@ -56,8 +56,7 @@ Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const
   const int nv = static_cast<int>(pairs.size());
   Eigen::MatrixXd I = Eigen::MatrixXd::Zero(nv, nv);
   const bool partial = points.partial_volume();
-  const double outer = points.bond_reach(kernel.horizon);
-  const double delta2 = partial ? outer * outer : peridynamics::horizon_cutoff_squared(kernel.horizon);
+  const double reach2 = peridynamics::bond_reach_squared(kernel.horizon, partial, 2.0 * points.half_bound);
   for (Index f : cells)
     for (int h = 0; h < points.per_cell; ++h) {
       const std::size_t k = points.index(f, h);
@@ -65,17 +64,14 @@ Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const
       if (da == 0.0) continue;
       const Vec3 xi = points.x[k] - xg;
       const double r2 = xi.squaredNorm();
-      if (r2 >= delta2 || r2 == 0.0) continue;
-      if (!mesh.cuts.empty() && peridynamics::bond_cut(xg, points.x[k], mesh.cuts)) continue;
-      double cb = 0.0;
-      if (!partial)
-        cb = kernel.bond(xi, std::sqrt(r2));
-      else if (dim == 1)
-        cb = peridynamics::bond_micromodulus<1>(kernel, xi, r2, &half_g, &points.half[k]);
-      else if (dim == 2)
-        cb = peridynamics::bond_micromodulus<2>(kernel, xi, r2, &half_g, &points.half[k]);
-      else
-        cb = peridynamics::bond_micromodulus<3>(kernel, xi, r2, &half_g, &points.half[k]);
+      if (!peridynamics::within_reach(r2, reach2)) continue;
+      const Vec3* hg = partial ? &half_g : nullptr;
+      const Vec3* hh = partial ? &points.half[k] : nullptr;
+      const double cb =
+          (dim == 1   ? peridynamics::pair_bond<1>(kernel, xg, points.x[k], xi, r2, hg, hh, mesh.cuts)
+           : dim == 2 ? peridynamics::pair_bond<2>(kernel, xg, points.x[k], xi, r2, hg, hh, mesh.cuts)
+                      : peridynamics::pair_bond<3>(kernel, xg, points.x[k], xi, r2, hg, hh, mesh.cuts))
+              .c_bond;
       if (cb == 0.0) continue;
       const double s = points.weight[k] * cb * 0.5 * da / (2.0 * r2);
       for (int a = 0; a < nv; ++a)

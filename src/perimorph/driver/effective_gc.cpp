@@ -119,8 +119,7 @@ std::vector<CellSums> sum_bonds(const Model& model, const Vec3& point, const Vec
     dmax[static_cast<std::size_t>(c)] = hi;
   }
   const bool partial = pts.partial_volume();
-  const double reach = pts.bond_reach(nl.kernel.horizon);
-  const double reach2 = partial ? reach * reach : peridynamics::horizon_cutoff_squared(nl.kernel.horizon);
+  const double reach2 = peridynamics::bond_reach_squared(nl.kernel.horizon, partial, 2.0 * pts.half_bound);
   const double s2 = s_crit * s_crit;
   std::vector<CellSums> sums(static_cast<std::size_t>(ncells));
 #pragma omp parallel for schedule(dynamic, 8)
@@ -141,16 +140,15 @@ std::vector<CellSums> sum_bonds(const Model& model, const Vec3& point, const Vec
           const double weight = sg * sh == -1 ? 1.0 : 0.5;
           const Vec3 xi = pts.x[kh] - pts.x[kg];
           const double r2 = xi.squaredNorm();
-          if (r2 >= reach2 || r2 == 0.0) continue;
+          if (!peridynamics::within_reach(r2, reach2)) continue;
           const double abar = 0.5 * (pts.alpha[kg] + pts.alpha[kh]);
           if (abar == 0.0) continue;
-          const double cb = peridynamics::bond_micromodulus<D>(
-              nl.kernel, xi, r2, partial ? &pts.half[kg] : nullptr, partial ? &pts.half[kh] : nullptr);
-          if (cb == 0.0) continue;
-          if (!cuts.empty() && peridynamics::bond_cut(pts.x[kg], pts.x[kh], cuts)) {
-            ++s.cut;
-            continue;
-          }
+          const peridynamics::PairBond bond = peridynamics::pair_bond<D>(
+              nl.kernel, pts.x[kg], pts.x[kh], xi, r2, partial ? &pts.half[kg] : nullptr,
+              partial ? &pts.half[kh] : nullptr, cuts);
+          s.cut += bond.cut ? 1 : 0;
+          if (bond.c_bond == 0.0) continue;
+          const double cb = bond.c_bond;
           // ½ ᾱ c_bond η² W with η = s_crit |ξ|.
           const double energy = 0.5 * abar * cb * s2 * r2 * pts.weight[kg] * pts.weight[kh] * weight;
           s.actual += energy;

@@ -11,9 +11,8 @@
 //   K_FF += Σ_h N_h N_hᵀ ⊗ S_h,  S_h = Σ_g k G
 //   K_EF −= Σ_g N_g ⊗ U_g,       U_g = Σ_h k G N_hᵀ
 
-#include "perimorph/core/cut.hpp"
 #include "perimorph/core/types.hpp"
-#include "perimorph/peridynamics/horizon_edge.hpp"
+#include "perimorph/peridynamics/bond_filter.hpp"
 #include "perimorph/peridynamics/micromodulus.hpp"
 
 #include <algorithm>
@@ -40,38 +39,6 @@ struct CellPoints {
 
 inline constexpr int max_cell_nodes = 8;
 
-/// Bonds are kept for |ξ|² < horizon_cutoff_squared(δ). The horizon is open
-/// (|ξ| < δ) and a bond within a relative 1e-10 of δ counts as exactly δ and
-/// is left out: on grids with δ/h rational, many point pairs lie exactly δ
-/// apart, and round-off in their coordinates must not decide bond by bond.
-inline double horizon_cutoff_squared(double delta) {
-  return delta * delta * (1.0 - 1e-10);
-}
-
-/// The micromodulus a bond ξ (|ξ|² = r2 > 0) acts with, 0 if there is no
-/// bond: c(|ξ|) inside the open horizon with the plain cut-off (half_g null),
-/// φ c(r_eff) (r_eff/|ξ|)² with the partial-volume rule (horizon_edge.hpp),
-/// times the angular factor Y(ξ/|ξ|) (anisotropy.hpp) either way.
-/// Either way the bond's stiffness is W ᾱ c_bond e eᵀ.
-template <int D>
-double bond_micromodulus(const Micromodulus& c, const Vec3& xi, double r2, const Vec3* half_g,
-                         const Vec3* half_h) {
-  const double r = std::sqrt(r2);
-  if (half_g == nullptr) return r2 < horizon_cutoff_squared(c.horizon) ? c.bond(xi, r) : 0.0;
-  const EdgeWeight w = edge_weight<D>(xi, r, *half_g, *half_h, c.horizon);
-  if (w.fraction == 0.0) return 0.0;
-  const double Y = c.angular(xi, r);
-  if (w.fraction == 1.0 && w.r_eff == r) return c(r) * Y;
-  return w.fraction * c(w.r_eff) * (w.r_eff * w.r_eff) / r2 * Y;
-}
-
-/// True if the bond x_g–x_h crosses one of the cuts (a pre-crack removes it).
-inline bool bond_cut(const Vec3& a, const Vec3& b, std::span<const Cut> cuts) {
-  for (const auto& cut : cuts)
-    if (cut.crosses(a, b)) return true;
-  return false;
-}
-
 /// Writes the block of the pair (E, F) into `block`, row-major, dofs ordered
 /// node-major: [E's nodes × D, F's nodes × D] (only E's when same_cell).
 /// `unit_alpha`: every α is 1 (ᾱ = 1, α not read). `broken`: sorted codes
@@ -86,8 +53,7 @@ std::size_t pair_stiffness(const CellPoints& E, const CellPoints& F, bool same_c
   const int n = same_cell ? nE * D : (nE + nF) * D;
   for (int i = 0; i < n * n; ++i) block[i] = 0.0;
   const bool partial = E.half != nullptr;
-  const double outer = c.horizon + E.half_bound + F.half_bound;
-  const double delta2 = partial ? outer * outer : horizon_cutoff_squared(c.horizon);
+  const double reach2 = bond_reach_squared(c.horizon, partial, E.half_bound + F.half_bound);
   std::size_t bonds = 0;
   std::array<double, max_cell_nodes * D * D> U{};
   std::array<double, D * D> T{};
@@ -109,15 +75,15 @@ std::size_t pair_stiffness(const CellPoints& E, const CellPoints& F, bool same_c
       if (same_cell && h == g) continue;
       const Vec3 xi = F.x[h] - xg;
       const double r2 = xi.squaredNorm();
-      if (r2 >= delta2 || r2 == 0.0) continue;
-      if (!cuts.empty() && bond_cut(xg, F.x[h], cuts)) continue;
+      if (!within_reach(r2, reach2)) continue;
       if (!broken.empty() &&
           std::binary_search(broken.begin(), broken.end(), static_cast<std::uint32_t>(g * F.count + h)))
         continue;
       const double abar = unit_alpha ? 1.0 : 0.5 * (E.alpha[g] + F.alpha[h]);
       if (abar == 0.0) continue;
-      const double cb =
-          partial ? bond_micromodulus<D>(c, xi, r2, E.half + g, F.half + h) : c.bond(xi, std::sqrt(r2));
+      const double cb = pair_bond<D>(c, xg, F.x[h], xi, r2, partial ? E.half + g : nullptr,
+                                     partial ? F.half + h : nullptr, cuts)
+                            .c_bond;
       if (cb == 0.0) continue;
       const double k = E.weight[g] * F.weight[h] * abar * cb / r2;  // G = ξξᵀ/r²
       ++bonds;
