@@ -66,41 +66,26 @@ std::vector<double> jump_at_middle(const driver::Model& model) {
   return u;
 }
 
-/// K, K with the constraints eliminated (A) and the right-hand side at load
-/// factor 1 (applied forces, prescribed values).
-struct System {
-  la::Matrix K, A;
-  la::Vector rhs;
-  driver::DirichletData bc;
-};
-
-System constrained_system(const driver::Model& model) {
-  auto assembled = driver::assemble_stiffness(model);
-  auto bc = driver::build_dirichlet(model);
-  const Index n = model.dofmap.num_dofs();
-  la::Vector g(n, 2), rhs(n, 2);
-  std::vector<double> gv(static_cast<std::size_t>(n), 0.0);
-  for (std::size_t k = 0; k < bc.dofs.size(); ++k) gv[static_cast<std::size_t>(bc.dofs[k])] = bc.values[k];
-  g.assign(gv);
-  rhs.assign(driver::build_external_force(model));
-  la::Matrix A = assembled.K.duplicate();
-  A.eliminate_dirichlet(bc.dofs, g, rhs);
-  return {std::move(assembled.K), std::move(A), std::move(rhs), std::move(bc)};
+/// The run's constrained system of a model at load factor 1 (applied forces,
+/// prescribed values).
+driver::ConstrainedSystem constrained_system(const driver::Model& model) {
+  return driver::ConstrainedSystem(model, driver::assemble_stiffness(model).K, driver::build_dirichlet(model),
+                                   driver::build_external_force(model));
 }
 
 /// Assembles, constrains and fails every bond across x = 2.
-System cut_plate(const driver::Model& model, driver::BondFailure& failure) {
-  System out = constrained_system(model);
+driver::ConstrainedSystem cut_plate(const driver::Model& model, driver::BondFailure& failure) {
+  driver::ConstrainedSystem out = constrained_system(model);
   const auto bonds = failure.select(jump_at_middle(model));
   EXPECT_GT(bonds.size(), 100u);
-  failure.apply(bonds, out.K, out.A, out.rhs, out.bc);
+  failure.apply(bonds, out);
   return out;
 }
 
 TEST(FloatingParts, CutFreeHalfIsHeldWithoutForce) {
   const auto model = driver::build_model(plate(false));
   driver::BondFailure failure(model);
-  System cut = cut_plate(model, failure);
+  driver::ConstrainedSystem cut = cut_plate(model, failure);
   // Every bond across x = 2 failed: no cell pair across it keeps one.
   const auto sp = failure.space();
   for (const auto& [e, f] : assembly::bonded_pairs(sp)) {
@@ -109,7 +94,7 @@ TEST(FloatingParts, CutFreeHalfIsHeldWithoutForce) {
   }
   // The right half is held along x only (its pulled edge): one part, free in y.
   EXPECT_EQ(failure.floating_parts(), 1u);
-  const Eigen::MatrixXd A = cut.A.to_dense();
+  const Eigen::MatrixXd A = cut.A().to_dense();
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A, Eigen::EigenvaluesOnly);
   const double ratio = eig.eigenvalues().minCoeff() / eig.eigenvalues().maxCoeff();
   std::printf("cut plate: %zu floating part(s), eigenvalue ratio of A %.3e\n", failure.floating_parts(),
@@ -117,7 +102,7 @@ TEST(FloatingParts, CutFreeHalfIsHeldWithoutForce) {
   EXPECT_GT(ratio, 1e-12);
   // Solution: the left half at rest, the right half moved rigidly by 0.004
   // along x. A support with a force on it would bend or shift the half.
-  const std::vector<double> rhs = cut.rhs.to_std();
+  const std::vector<double> rhs = cut.rhs_unit().to_std();
   const Eigen::VectorXd u = A.ldlt().solve(Eigen::Map<const Eigen::VectorXd>(rhs.data(), A.rows()));
   const auto& dm = model.dofmap;
   double err = 0.0;
@@ -153,7 +138,7 @@ TEST(FloatingParts, ForceOnANodeLeftWithoutStiffnessIsAnError) {
   c.fracture.s_crit = 1e-12;
   const auto model = driver::build_model(c);
   driver::BondFailure failure(model);
-  System sys = constrained_system(model);
+  driver::ConstrainedSystem sys = constrained_system(model);
   std::vector<double> u(static_cast<std::size_t>(model.dofmap.num_dofs()), 0.0);
   for (Index cell = 0; cell < model.mesh.num_cells(); ++cell)
     if (model.mesh.cell_centroid(cell).x() > 3.75)
@@ -164,7 +149,7 @@ TEST(FloatingParts, ForceOnANodeLeftWithoutStiffnessIsAnError) {
   const auto bonds = failure.select(u);
   ASSERT_GT(bonds.size(), 50u);
   try {
-    failure.apply(bonds, sys.K, sys.A, sys.rhs, sys.bc);
+    failure.apply(bonds, sys);
     FAIL() << "a node left without stiffness under a force was accepted";
   } catch (const Error& e) {
     const std::string what = e.what();

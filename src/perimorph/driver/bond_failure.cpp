@@ -52,8 +52,12 @@ std::vector<assembly::StretchedBond> BondFailure::select(std::span<const double>
   return over;
 }
 
-FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, la::Matrix& K,
-                                 la::Matrix& A, la::Vector& rhs_unit, const DirichletData& bc) {
+FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds,
+                                 ConstrainedSystem& system) {
+  la::Matrix& K = system.K();
+  la::Matrix& A = system.A();
+  la::Vector& rhs_unit = system.rhs_unit();
+  const DirichletData& bc = system.bc();
   const int dim = model_.dim();
   const auto& pts = model_.nonlocal->points;
   const auto& dm = model_.dofmap;
@@ -172,6 +176,7 @@ FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bon
     detached.insert(detached.end(), parts.pins.begin(), parts.pins.end());  // A changed
   }
   if (!detached.empty()) A.finalize();
+  system.operator_changed();
   energy_.dissipated += energy.dissipated;
   energy_.overshoot += energy.overshoot;
   return energy;

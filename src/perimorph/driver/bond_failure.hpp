@@ -9,6 +9,7 @@
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/bonds/broken_bonds.hpp"
 #include "perimorph/driver/boundary_conditions.hpp"
+#include "perimorph/driver/constrained_system.hpp"
 #include "perimorph/driver/model.hpp"
 #include "perimorph/driver/run_output.hpp"
 #include "perimorph/la/matrix.hpp"
@@ -42,14 +43,14 @@ class BondFailure {
   /// never selected.
   std::vector<assembly::StretchedBond> select(std::span<const double> u) const;
 
-  /// Breaks `bonds` (from select at the current u): K −= their blocks; A −=
-  /// their blocks on free rows and columns; rhs_unit[i] += B_ij g_j for free i
-  /// and prescribed j (g = the prescribed values at load factor 1). Returns
-  /// their energy, at s_crit and beyond it. Dofs left with no stiffness, and parts cut free of
-  /// every support, are held by springs on A (no force on them). A and K are
-  /// finalized here.
-  FailureEnergy apply(const std::vector<assembly::StretchedBond>& bonds, la::Matrix& K, la::Matrix& A,
-                      la::Vector& rhs_unit, const DirichletData& bc);
+  /// Breaks `bonds` (from select at the current u) in `system`: K −= their
+  /// blocks; A −= their blocks on free rows and columns; rhs_unit[i] += B_ij g_j
+  /// for free i and prescribed j (g = the prescribed values at load factor 1).
+  /// Returns their energy, at s_crit and beyond it. Dofs left with no
+  /// stiffness, and parts cut free of every support, are held by springs on A
+  /// (no force on them). A and K are finalized here and the solver takes the
+  /// new A (ConstrainedSystem::operator_changed).
+  FailureEnergy apply(const std::vector<assembly::StretchedBond>& bonds, ConstrainedSystem& system);
 
   const bonds::BrokenBonds& broken() const { return broken_; }
   /// D of THEORY §5: Σ over the failed bonds of the energy each held at

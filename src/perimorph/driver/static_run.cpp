@@ -76,33 +76,18 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
   // Constraints and loads first: a case error stops the run before the assembly.
   progress.phase("loads");
   RunSetup setup = prepare_run(model);
-  const DirichletData& bc = setup.bc;
   const std::vector<double>& F = setup.F;
   const auto& sets = setup.sets;
   std::optional<BondFailure>& failure = setup.failure;
 
-  // K (kept unconstrained for reactions and energies) and the constrained copy A.
   progress.phase("assembly");
   AssembledStiffness assembled = assemble_stiffness(model);
-  la::Matrix& K = assembled.K;
   const Index n = model.dofmap.num_dofs();
 
-  // Unit-load right-hand side with the constraints eliminated: linear in the
-  // load factor, so it is scaled per increment.
   progress.phase("solver set-up");
-  la::Vector g(n, dim), rhs_unit(n, dim), f_unit(n, dim);
-  {
-    std::vector<double> gv(static_cast<std::size_t>(n), 0.0);
-    for (std::size_t k = 0; k < bc.dofs.size(); ++k) gv[static_cast<std::size_t>(bc.dofs[k])] = bc.values[k];
-    g.assign(gv);
-  }
-  f_unit.assign(F);
-  rhs_unit.copy_from(f_unit);
-  la::Matrix A = K.duplicate();
-  A.eliminate_dirichlet(bc.dofs, g, rhs_unit);
-  A.set_spd();
-  la::LinearSolver solver(config.solver.rtol, config.solver.max_iterations);
-  solver.set_operator(A, model.dofmap.node_coordinates(), dim);
+  ConstrainedSystem system(model, std::move(assembled.K), std::move(setup.bc), F);
+  system.attach_solver();
+  const la::Matrix& K = system.K();
 
   RunSummary summary;
   for (const auto& s : sets) summary.reaction_names.push_back(s.name);
@@ -112,7 +97,7 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
   summary.pvd_path = config.output.vtu ? output.pvd_path() : "";
 
   progress.start_increments();
-  la::Vector u(n, dim), rhs(n, dim), internal(n, dim);
+  la::Vector u(n, dim), internal(n, dim);
   std::vector<double> u_prev(static_cast<std::size_t>(n), 0.0), fint_prev(static_cast<std::size_t>(n), 0.0);
   double work = 0.0;
   bool options_checked = false;
@@ -124,10 +109,8 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
                        : fmt::format("Results of increments 1..{} are in {}", done, summary.output_directory);
     };
     auto solve = [&]() {
-      rhs.set_all(0.0);
-      rhs.axpy(lambda, rhs_unit);
       try {
-        summary.last_solve = solver.solve(rhs, u);
+        summary.last_solve = system.solve(lambda, u);
       } catch (const SolverError& e) {
         progress.finish();
         const bool after_failures = failure && !failure->broken().empty();
@@ -237,7 +220,7 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
         for (const auto& b : bonds) max_stretch = std::max(max_stretch, b.stretch);
         FailureEnergy energy_failed;
         try {
-          energy_failed = failure->apply(bonds, K, A, rhs_unit, bc);
+          energy_failed = failure->apply(bonds, system);
         } catch (const Error& e) {  // a part cut free with unbalanced loads (floating_parts.hpp)
           progress.finish();
           output.write_increment_vtu(model, i + 1, lambda, uv, failure->fields());
@@ -248,7 +231,6 @@ RunSummary run_static(const Model& model, const RunOptions& options) {
               output.writes_vtu() ? output.vtu_path(i + 1) : "no VTU: [output] vtu = false", kept(i)));
         }
         output.add_failed_bonds(model, i + 1, rec.break_iterations, bonds, failure->s_crit());
-        solver.set_operator(A, model.dofmap.node_coordinates(), dim);
         const std::vector<double> u_before = uv;
         solve();
         output.add_failure_row(i + 1, rec.break_iterations, bonds.size(), energy_failed,
