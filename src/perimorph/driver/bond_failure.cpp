@@ -54,25 +54,13 @@ std::vector<assembly::StretchedBond> BondFailure::select(std::span<const double>
 
 FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds,
                                  ConstrainedSystem& system) {
-  la::Matrix& K = system.K();
-  la::Matrix& A = system.A();
-  la::Vector& rhs_unit = system.rhs_unit();
-  const DirichletData& bc = system.bc();
   const int dim = model_.dim();
   const auto& pts = model_.nonlocal->points;
   const auto& dm = model_.dofmap;
-  if (prescribed_.empty()) {
-    // Once: the prescribed values at load factor 1 (NaN on free dofs) and the
-    // diagonal of A before any failure.
-    prescribed_.assign(static_cast<std::size_t>(dm.num_dofs()), std::nan(""));
-    for (std::size_t k = 0; k < bc.dofs.size(); ++k)
-      prescribed_[static_cast<std::size_t>(bc.dofs[k])] = bc.values[k];
-    initial_diagonal_ = A.diagonal();
-    applied_force_ = build_external_force(model_);
-  }
+  if (applied_force_.empty()) applied_force_ = build_external_force(model_);
   const std::vector<double> ones{1.0};
-  std::vector<double> block, negative, rhs_add;
-  std::vector<Index> dofs, free_dofs, touched, rhs_at;
+  std::vector<double> block;
+  std::vector<Index> dofs;
   FailureEnergy energy;
   for (const auto& b : bonds) {
     if (!broken_.add(b.id)) continue;
@@ -96,47 +84,12 @@ FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bon
     block.assign(m * m, 0.0);
     dispatch_dim(
         dim, [&](auto D) { peridynamics::bond_block<D()>(Ng, nE, Nh, nF, same, b.xi, b.k, block.data()); });
-    negative.resize(m * m);
-    for (std::size_t i = 0; i < m * m; ++i) negative[i] = -block[i];
-    K.add(dofs, dofs, negative);
-    free_dofs = dofs;
-    for (std::size_t i = 0; i < m; ++i)
-      if (!std::isnan(prescribed_[static_cast<std::size_t>(dofs[i])])) free_dofs[i] = -1;  // skipped by add
-    A.add(free_dofs, free_dofs, negative);
-    for (std::size_t i = 0; i < m; ++i) {
-      if (free_dofs[i] < 0) continue;
-      touched.push_back(dofs[i]);
-      double sum = 0.0;
-      for (std::size_t j = 0; j < m; ++j) {
-        const double g = prescribed_[static_cast<std::size_t>(dofs[j])];
-        if (!std::isnan(g)) sum += block[i * m + j] * g;
-      }
-      if (sum != 0.0) {
-        rhs_at.push_back(dofs[i]);
-        rhs_add.push_back(sum);
-      }
-    }
+    system.downdate(dofs, block);
   }
-  K.finalize();
-  A.finalize();
-  rhs_unit.add_at(rhs_at, rhs_add);
   // A free dof whose every bond has failed has a zero row: the matrix turns
   // singular. Such a dof is coupled to nothing, so holding it at zero by a
   // spring of its initial stiffness changes no other dof.
-  std::sort(touched.begin(), touched.end());
-  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-  const std::vector<double> diag = A.diagonal_at(touched);
-  // Holds dof d by a spring of its initial stiffness on A's diagonal.
-  auto hold = [&](Index d) {
-    const Index one[1] = {d};
-    const double spring[1] = {initial_diagonal_[static_cast<std::size_t>(d)]};
-    A.add(one, one, spring);
-  };
-  std::vector<Index> detached;
-  for (std::size_t k = 0; k < touched.size(); ++k) {
-    const double d0 = initial_diagonal_[static_cast<std::size_t>(touched[k])];
-    if (std::abs(diag[k]) <= 1e-12 * std::abs(d0)) detached.push_back(touched[k]);
-  }
+  const std::vector<Index> detached = system.without_stiffness(system.finish_downdate());
   for (Index d : detached) {
     const double force = applied_force_[static_cast<std::size_t>(d)];
     if (force != 0.0) {
@@ -147,13 +100,10 @@ FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bon
                       "equilibrium",
                       x.x(), x.y(), x.z(), "xyz"[d % dim], force));
     }
-    hold(d);
   }
-  if (!detached.empty()) {
-    rhs_unit.set_at(detached, 0.0);
-    detached_ += detached.size();
-    held_.insert(held_.end(), detached.begin(), detached.end());
-  }
+  system.hold(detached, true);
+  detached_ += detached.size();
+  held_.insert(held_.end(), detached.begin(), detached.end());
   // A cell pair that lost its last intact bond may have cut a part free
   // (floating_parts.hpp): hold its free rigid-body modes by springs on a
   // minimal set of its dofs, which carry no force.
@@ -167,15 +117,14 @@ FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bon
   }
   if (separated) {
     std::vector<Index> held = held_;
-    held.insert(held.end(), bc.dofs.begin(), bc.dofs.end());
+    const auto& prescribed = system.bc().dofs;
+    held.insert(held.end(), prescribed.begin(), prescribed.end());
     std::sort(held.begin(), held.end());
     const FloatingParts parts = find_floating_parts(model_, sp, held, applied_force_);
-    for (Index d : parts.pins) hold(d);
+    system.hold(parts.pins, false);
     held_.insert(held_.end(), parts.pins.begin(), parts.pins.end());
     floating_parts_ += static_cast<std::size_t>(parts.parts);
-    detached.insert(detached.end(), parts.pins.begin(), parts.pins.end());  // A changed
   }
-  if (!detached.empty()) A.finalize();
   system.operator_changed();
   energy_.dissipated += energy.dissipated;
   energy_.overshoot += energy.overshoot;

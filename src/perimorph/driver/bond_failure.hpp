@@ -80,8 +80,6 @@ class BondFailure {
   bonds::BrokenBonds broken_;
   FailureEnergy energy_;
   std::vector<double> cell_dissipated_;
-  std::vector<double> initial_diagonal_;  ///< of A before any failure
-  std::vector<double> prescribed_;        ///< prescribed value at load factor 1, NaN on free dofs
   std::size_t detached_ = 0;
   std::size_t floating_parts_ = 0;
   std::vector<Index> held_;            ///< detached dofs and pins of floating parts

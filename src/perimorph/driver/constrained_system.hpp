@@ -4,8 +4,8 @@
 // (symmetric positive definite); rhs_unit, the right-hand side at load factor
 // 1 (the applied forces, and the prescribed values moved over); the Dirichlet
 // data; and the solver on A. The load enters linearly: the system at load
-// factor λ is A u = λ rhs_unit. Bond failure changes K, A and rhs_unit in
-// place (BondFailure::apply) and then calls operator_changed().
+// factor λ is A u = λ rhs_unit. Bond failure changes it in place through
+// downdate and hold (BondFailure::apply), then calls operator_changed().
 
 #include "perimorph/driver/boundary_conditions.hpp"
 #include "perimorph/driver/model.hpp"
@@ -13,8 +13,10 @@
 #include "perimorph/la/matrix.hpp"
 #include "perimorph/la/vector.hpp"
 
+#include <cmath>
 #include <memory>
 #include <span>
+#include <vector>
 
 namespace perimorph::driver {
 
@@ -33,6 +35,24 @@ class ConstrainedSystem {
   /// A has changed (a downdate or held dofs): the solver takes it again.
   void operator_changed();
 
+  /// Subtracts a bond's block (m × m, row-major, over `dofs`) from K, and from
+  /// A on its free rows and columns; the block's prescribed columns move to
+  /// the right-hand side, rhs_unit[i] += B_ij g_j (free i, prescribed j, g the
+  /// prescribed values at load factor 1). Call finish_downdate after the last.
+  void downdate(std::span<const Index> dofs, std::span<const double> block);
+  /// Finalizes K and A after downdates; returns the free dofs they touched
+  /// (sorted, unique).
+  std::vector<Index> finish_downdate();
+  /// Of `dofs`, those whose diagonal of A has fallen to round-off (1e-12) of
+  /// its value before any downdate: dofs left with no stiffness.
+  std::vector<Index> without_stiffness(std::span<const Index> dofs) const;
+  /// Holds each dof by a spring of its stiffness before any downdate on A's
+  /// diagonal (K unchanged: the spring carries no force); with `zero_rhs` the
+  /// right-hand side there is set to 0. A is finalized.
+  void hold(std::span<const Index> dofs, bool zero_rhs);
+  /// True if the dof is prescribed.
+  bool prescribed(Index dof) const { return !std::isnan(prescribed_[static_cast<std::size_t>(dof)]); }
+
   la::Matrix& K() { return K_; }
   const la::Matrix& K() const { return K_; }
   la::Matrix& A() { return A_; }
@@ -47,6 +67,11 @@ class ConstrainedSystem {
   DirichletData bc_;
   la::Vector rhs_unit_, rhs_;
   std::unique_ptr<la::LinearSolver> solver_;
+  std::vector<double> prescribed_;        ///< value at load factor 1; NaN on free dofs
+  std::vector<double> initial_diagonal_;  ///< of A, before any downdate
+  // Collected by downdate, applied by finish_downdate.
+  std::vector<Index> touched_, rhs_at_, free_dofs_;
+  std::vector<double> rhs_add_, negative_;
 };
 
 }  // namespace perimorph::driver
