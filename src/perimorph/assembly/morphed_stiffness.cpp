@@ -68,10 +68,9 @@ Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const
       const Vec3* hg = partial ? &half_g : nullptr;
       const Vec3* hh = partial ? &points.half[k] : nullptr;
       const double cb =
-          (dim == 1   ? peridynamics::pair_bond<1>(kernel, xg, points.x[k], xi, r2, hg, hh, mesh.cuts)
-           : dim == 2 ? peridynamics::pair_bond<2>(kernel, xg, points.x[k], xi, r2, hg, hh, mesh.cuts)
-                      : peridynamics::pair_bond<3>(kernel, xg, points.x[k], xi, r2, hg, hh, mesh.cuts))
-              .c_bond;
+          dispatch_dim(dim, [&](auto D) {
+            return peridynamics::pair_bond<D()>(kernel, xg, points.x[k], xi, r2, hg, hh, mesh.cuts);
+          }).c_bond;
       if (cb == 0.0) continue;
       const double s = points.weight[k] * cb * 0.5 * da / (2.0 * r2);
       for (int a = 0; a < nv; ++a)

@@ -57,7 +57,7 @@ FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bon
   const int dim = model_.dim();
   const auto& pts = model_.nonlocal->points;
   const auto& dm = model_.dofmap;
-  if (applied_force_.empty()) applied_force_ = build_external_force(model_);
+  const std::vector<double>& applied_force = system.applied_force();
   const std::vector<double> ones{1.0};
   std::vector<double> block;
   std::vector<Index> dofs;
@@ -91,7 +91,7 @@ FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bon
   // spring of its initial stiffness changes no other dof.
   const std::vector<Index> detached = system.without_stiffness(system.finish_downdate());
   for (Index d : detached) {
-    const double force = applied_force_[static_cast<std::size_t>(d)];
+    const double force = applied_force[static_cast<std::size_t>(d)];
     if (force != 0.0) {
       const Vec3 x = dm.node_coordinate(d / dim);
       throw Error(
@@ -120,7 +120,7 @@ FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bon
     const auto& prescribed = system.bc().dofs;
     held.insert(held.end(), prescribed.begin(), prescribed.end());
     std::sort(held.begin(), held.end());
-    const FloatingParts parts = find_floating_parts(model_, sp, held, applied_force_);
+    const FloatingParts parts = find_floating_parts(model_, sp, held, applied_force);
     system.hold(parts.pins, false);
     held_.insert(held_.end(), parts.pins.begin(), parts.pins.end());
     floating_parts_ += static_cast<std::size_t>(parts.parts);

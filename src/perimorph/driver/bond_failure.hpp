@@ -82,9 +82,8 @@ class BondFailure {
   std::vector<double> cell_dissipated_;
   std::size_t detached_ = 0;
   std::size_t floating_parts_ = 0;
-  std::vector<Index> held_;            ///< detached dofs and pins of floating parts
-  std::vector<double> applied_force_;  ///< at load factor 1
-  std::vector<char> no_fail_;          ///< per cell, 1 in a no_fail region; empty when there is none
+  std::vector<Index> held_;    ///< detached dofs and pins of floating parts
+  std::vector<char> no_fail_;  ///< per cell, 1 in a no_fail region; empty when there is none
 };
 
 }  // namespace perimorph::driver

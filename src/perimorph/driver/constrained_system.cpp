@@ -13,6 +13,7 @@ ConstrainedSystem::ConstrainedSystem(const Model& model, la::Matrix K, Dirichlet
       K_(std::move(K)),
       A_(K_.duplicate()),
       bc_(std::move(bc)),
+      applied_force_(F.begin(), F.end()),
       rhs_unit_(model.dofmap.num_dofs(), model.dim()),
       rhs_(model.dofmap.num_dofs(), model.dim()) {
   const Index n = model.dofmap.num_dofs();

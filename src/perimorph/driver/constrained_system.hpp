@@ -60,11 +60,14 @@ class ConstrainedSystem {
   la::Vector& rhs_unit() { return rhs_unit_; }
   const la::Vector& rhs_unit() const { return rhs_unit_; }
   const DirichletData& bc() const { return bc_; }
+  /// The external force at load factor 1 (before the constraints).
+  const std::vector<double>& applied_force() const { return applied_force_; }
 
  private:
   const Model& model_;
   la::Matrix K_, A_;
   DirichletData bc_;
+  std::vector<double> applied_force_;
   la::Vector rhs_unit_, rhs_;
   std::unique_ptr<la::LinearSolver> solver_;
   std::vector<double> prescribed_;        ///< value at load factor 1; NaN on free dofs

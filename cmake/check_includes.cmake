@@ -1,0 +1,38 @@
+# Fails (FATAL_ERROR) when a source under ${UNDER} includes what the layout of README.md forbids it:
+#   FORBID   a regex of header paths it may not include (e.g. PETSc's), or
+#   ALLOWED  the perimorph folders it may include (comma-separated; any other perimorph/<folder>/ is an error).
+# EXCLUDE (optional): a regex of source paths left out.
+#   cmake -DSOURCE_DIR=<repo> -DUNDER=src -DEXCLUDE=/src/perimorph/la/ "-DFORBID=(petsc|mpi)" -P check_includes.cmake
+#   cmake -DSOURCE_DIR=<repo> -DUNDER=src/perimorph/core -DALLOWED=core -P check_includes.cmake
+string(REPLACE "," ";" ALLOWED "${ALLOWED}")
+file(GLOB_RECURSE sources ${SOURCE_DIR}/${UNDER}/*.hpp ${SOURCE_DIR}/${UNDER}/*.cpp)
+set(offenders "")
+set(checked 0)
+foreach(f ${sources})
+  if(EXCLUDE AND f MATCHES "${EXCLUDE}")
+    continue()
+  endif()
+  math(EXPR checked "${checked} + 1")
+  file(STRINGS ${f} lines REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"]")
+  foreach(line ${lines})
+    string(REGEX MATCH "[<\"]([^>\"]*)[>\"]" _ "${line}")
+    set(header "${CMAKE_MATCH_1}")
+    if(FORBID AND header MATCHES "^(${FORBID})")
+      list(APPEND offenders "${f}: ${line}")
+    elseif(ALLOWED AND header MATCHES "^perimorph/([a-z_]+)/")
+      list(FIND ALLOWED "${CMAKE_MATCH_1}" allowed)
+      if(allowed EQUAL -1)
+        list(APPEND offenders "${f}: ${line}")
+      endif()
+    endif()
+  endforeach()
+endforeach()
+set(rule "${UNDER}/ may not include ${FORBID}")
+if(ALLOWED)
+  set(rule "${UNDER}/ may include only ${ALLOWED}")
+endif()
+if(offenders)
+  string(REPLACE ";" "\n  " text "${offenders}")
+  message(FATAL_ERROR "${rule}:\n  ${text}")
+endif()
+message(STATUS "${rule}: checked ${checked} files")
