@@ -19,6 +19,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <utility>
 
 namespace perimorph::app {
 
@@ -197,6 +198,13 @@ int gc(const std::string& path, std::vector<double> point, std::vector<double> n
   if (!model.nonlocal)
     throw perimorph::InputError(
         fmt::format("{}: no [nonlocal] section: G_c is a property of the bond model", path));
+  // One number per axis of the case at least (a shorter vector would put the
+  // plane somewhere the user did not say); a z of 0 may follow in 2D.
+  for (const auto& [name, v] : {std::pair{"--point", &point}, std::pair{"--normal", &normal}})
+    if (static_cast<int>(v->size()) < model.dim())
+      throw perimorph::InputError(fmt::format("{} has {} number{} but {} is {}D: give one per axis ({})",
+                                              name, v->size(), v->size() == 1 ? "" : "s", path, model.dim(),
+                                              model.dim() == 2 ? "x y" : "x y z"));
   point.resize(3, 0.0);
   normal.resize(3, 0.0);
   const double kappa = model.nonlocal->calibration.gc_factor;

@@ -140,7 +140,9 @@ int main(int argc, char** argv) {
       "free faces included, pre-cracked bonds left out) and the bulk window (crossings farther than delta "
       "from every face) (THEORY §5)");
   gc_cmd->add_option("CASE", case_path, "Case file (TOML) with a [nonlocal] section")->required();
-  gc_cmd->add_option("--point", gc_point, "A point of the plane, one number per axis (missing ones are 0)")
+  gc_cmd
+      ->add_option("--point", gc_point,
+                   "A point of the plane, one number per axis of the case (in 2D a third, z, may be 0)")
       ->required()
       ->expected(1, 3)
       ->type_name("X [Y [Z]]");

@@ -53,6 +53,16 @@ add_test(NAME cli_gc_plane_misses_the_body
 set_tests_properties(cli_gc_plane_misses_the_body PROPERTIES
   PASS_REGULAR_EXPRESSION "error: the plane through .* does not cut the body .*choose a point inside the box")
 
+# A point or normal with fewer numbers than the case has axes is an error, not a plane put at 0.
+add_test(NAME cli_gc_point_short
+  COMMAND ${PM_GC_EXE} gc ${PM_GC_CASE} --point 2 --normal 0 1)
+set_tests_properties(cli_gc_point_short PROPERTIES
+  PASS_REGULAR_EXPRESSION "error: --point has 1 number but .* is 2D: give one per axis \\(x y\\)")
+add_test(NAME cli_gc_normal_short
+  COMMAND ${PM_GC_EXE} gc ${PM_GC_CASE} --point 2 2 --normal 1)
+set_tests_properties(cli_gc_normal_short PROPERTIES
+  PASS_REGULAR_EXPRESSION "error: --normal has 1 number but .* is 2D")
+
 add_test(NAME cli_gc_bad_s_crit
   COMMAND ${PM_GC_EXE} gc ${PM_GC_CASE} --point 2 2 --normal 0 1 --s-crit -1)
 set_tests_properties(cli_gc_bad_s_crit PROPERTIES PASS_REGULAR_EXPRESSION "error: --s-crit must be a positive")
