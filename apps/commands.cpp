@@ -5,13 +5,13 @@
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/casefile/parse_case.hpp"
 #include "perimorph/core/error.hpp"
-#include "perimorph/driver/critical_stretch.hpp"
-#include "perimorph/driver/effective_gc.hpp"
-#include "perimorph/driver/ghost_forces.hpp"
-#include "perimorph/driver/model.hpp"
-#include "perimorph/driver/static_run.hpp"
+#include "perimorph/diagnostics/effective_gc.hpp"
+#include "perimorph/diagnostics/ghost_forces.hpp"
 #include "perimorph/io/progress.hpp"
 #include "perimorph/la/petsc_session.hpp"
+#include "perimorph/run/static_run.hpp"
+#include "perimorph/setup/critical_stretch.hpp"
+#include "perimorph/setup/discretization.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -25,10 +25,10 @@ namespace perimorph::app {
 
 int check(const std::string& path) {
   const auto config = perimorph::casefile::parse_case_file(path);
-  const auto model = perimorph::driver::build_model(config);
+  const auto model = perimorph::setup::build_discretization(config);
   // What `run` builds before its first solve, so that check finds every case
   // error run would find (set names, loads, the critical stretch, ...).
-  const auto setup = perimorph::driver::prepare_run(model);
+  const auto setup = perimorph::run::prepare_run(model);
   fmt::print(
       "{}: OK — {}D, {} cells, {} nodes, {} dofs, {} material(s), {} increment(s), {} constrained dofs\n",
       path, model.dim(), model.mesh.num_cells(), model.mesh.num_nodes(), model.dofmap.num_dofs(),
@@ -45,7 +45,7 @@ std::unique_ptr<perimorph::la::PetscSession> quiet_petsc() {
 
 /// The anisotropic micromodulus: its coefficients, the range of Y and how
 /// closely c_r Y reproduces C0 (THEORY §2.1, eq. 2.64; exact up to round-off).
-void print_angular(const perimorph::driver::NonlocalModel& nl, int dim) {
+void print_angular(const perimorph::setup::NonlocalModel& nl, int dim) {
   namespace pd = perimorph::peridynamics;
   const auto& Y = nl.kernel.angular;
   const int n = dim == 2 ? 5 : Y.kind == pd::AngularKind::transversely_isotropic ? 3 : 6;
@@ -87,7 +87,7 @@ int info(const std::string& path) {
   namespace pd = perimorph::peridynamics;
   const auto config = perimorph::casefile::parse_case_file(path);
   auto petsc = quiet_petsc();
-  const auto model = perimorph::driver::build_model(config);
+  const auto model = perimorph::setup::build_discretization(config);
   fmt::print("case       {}\n", path);
   fmt::print("mesh       {}D, {} cells, {} nodes; {} dof nodes, {} dofs\n", model.dim(),
              model.mesh.num_cells(), model.mesh.num_nodes(), model.dofmap.num_nodes(),
@@ -177,24 +177,23 @@ int ghost_forces(const std::string& path, const std::vector<double>& strain, con
     eps(0, 1) = eps(1, 0) = strain[5];
   }
   auto petsc = quiet_petsc();
-  const auto model = perimorph::driver::build_model(config);
-  const auto g = perimorph::driver::compute_ghost_forces(model, eps);
-  const std::string dir = perimorph::driver::resolve_output_directory(config, {out_dir, true});
+  const auto model = perimorph::setup::build_discretization(config);
+  const auto g = perimorph::diagnostics::compute_ghost_forces(model, eps);
+  const std::string dir = perimorph::run::resolve_output_directory(config, {out_dir, true});
   const std::string base =
       config.output.basename.empty() ? std::filesystem::path(path).stem().string() : config.output.basename;
-  const auto csv = perimorph::driver::write_ghost_forces(model, g, dir, base);
+  const auto csv = perimorph::diagnostics::write_ghost_forces(model, g, dir, base);
   fmt::print("max ghost-force density {:.6e}; wrote {}\n", g.max_density, csv);
   return 0;
 }
 
 /// The critical energy release rate of a crack plane: closed form, actual
-/// geometry and bulk window (driver/effective_gc.hpp).
+/// geometry and bulk window (diagnostics/effective_gc.hpp).
 int gc(const std::string& path, std::vector<double> point, std::vector<double> normal,
        std::optional<double> s_option) {
-  namespace drv = perimorph::driver;
   const auto config = perimorph::casefile::parse_case_file(path);
   auto petsc = quiet_petsc();
-  const auto model = drv::build_model(config);
+  const auto model = perimorph::setup::build_discretization(config);
   if (!model.nonlocal)
     throw perimorph::InputError(
         fmt::format("{}: no [nonlocal] section: G_c is a property of the bond model", path));
@@ -208,15 +207,16 @@ int gc(const std::string& path, std::vector<double> point, std::vector<double> n
   point.resize(3, 0.0);
   normal.resize(3, 0.0);
   const double kappa = model.nonlocal->calibration.gc_factor;
-  const auto s = drv::resolve_critical_stretch(config.fracture, kappa, s_option);
-  const auto g =
-      drv::effective_gc(model, {{point[0], point[1], point[2]}, {normal[0], normal[1], normal[2]}}, s.value);
-  const bool per_s2 = s.source == drv::StretchSource::unit;
+  const auto s = perimorph::setup::resolve_critical_stretch(config.fracture, kappa, s_option);
+  const auto g = perimorph::diagnostics::effective_gc(
+      model, {{point[0], point[1], point[2]}, {normal[0], normal[1], normal[2]}}, s.value);
+  const bool per_s2 = s.source == perimorph::setup::StretchSource::unit;
   const char* unit = per_s2 ? " per s_crit^2" : "";
-  const char* from = s.source == drv::StretchSource::option        ? "--s-crit"
-                     : s.source == drv::StretchSource::case_s_crit ? "[fracture] s_crit"
-                     : s.source == drv::StretchSource::case_G_c    ? "[fracture] G_c through the closed form"
-                                                                   : "none given: figures are per s_crit^2";
+  const char* from = s.source == perimorph::setup::StretchSource::option        ? "--s-crit"
+                     : s.source == perimorph::setup::StretchSource::case_s_crit ? "[fracture] s_crit"
+                     : s.source == perimorph::setup::StretchSource::case_G_c
+                         ? "[fracture] G_c through the closed form"
+                         : "none given: figures are per s_crit^2";
   const auto& p = g.plane;
   fmt::print("case         {}\n", path);
   fmt::print("plane        through ({:.6g}, {:.6g}, {:.6g}), unit normal ({:.6g}, {:.6g}, {:.6g})\n",
@@ -274,9 +274,9 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
   int argc = static_cast<int>(args.size());
   char** argv_ptr = argv.data();
   perimorph::la::PetscSession petsc(argc, argv_ptr);
-  const auto model =
-      perimorph::driver::build_model(config, [&](const std::string& phase) { progress.phase(phase); });
-  const auto summary = perimorph::driver::run_static(model, {out_dir, quiet, &progress});
+  const auto model = perimorph::setup::build_discretization(
+      config, [&](const std::string& phase) { progress.phase(phase); });
+  const auto summary = perimorph::run::run_static(model, {out_dir, quiet, &progress});
   progress.finish();
   if (!quiet) {
     fmt::print("{}: {} increment(s), {} dofs; last solve {} + {}: {} iterations, relative residual {:.2e}\n",

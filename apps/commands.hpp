@@ -20,7 +20,7 @@ int info(const std::string& path);
 /// The residual of u = strain · x on every dof (THEORY §3.2), as CSV and VTU.
 int ghost_forces(const std::string& path, const std::vector<double>& strain, const std::string& out_dir);
 
-/// The critical energy release rate of a crack plane (driver/effective_gc.hpp).
+/// The critical energy release rate of a crack plane (diagnostics/effective_gc.hpp).
 int gc(const std::string& path, std::vector<double> point, std::vector<double> normal,
        std::optional<double> s_option);
 

@@ -1,6 +1,6 @@
 // Cost of one bond-breaking iteration (issue 5, THEORY §5;
 // docs/benchmarks/fracture-update.md): the incremental update of K, A and the
-// right-hand side (driver::BondFailure::apply) against a full reassembly, on
+// right-hand side (evolution::BondFailure::apply) against a full reassembly, on
 // the B6 geometry (BENCHMARKS.md): block 12δ × 8δ × 2δ, δ = 1, gaussian
 // kernel l = δ/3, E = 300 GPa, ν = 1/4, pre-crack cut in the plane y = 4 for
 // x < 4, α = 1 in the box x ≥ 3, 3 ≤ y ≤ 5 (all z) with a cubic transition
@@ -9,7 +9,7 @@
 // u = (0, ±u_d, 0) on the top and bottom faces for x ≤ 2 (all components
 // prescribed there), u_d = 0.01.
 //
-// Per mesh, once, not timed: build_model, assemble_stiffness, A = K with the
+// Per mesh, once, not timed: build_discretization, assemble_stiffness, A = K with the
 // constraints eliminated, the elastic solution u at load factor 1 (CG + GAMG,
 // the default solver) and the stretches of every bond in tension at u; the
 // 1000 most stretched bonds are the ones broken below (in select's order).
@@ -35,7 +35,7 @@
 //   Fields/nx, CrackArea/nx   BondFailure::fields() (damage and dissipation
 //                         per cell, for the VTU) and crack_area() (CSV), after
 //                         the 100 most stretched bonds failed
-//   FloatingParts/nx       driver::find_floating_parts (the connected parts of
+//   FloatingParts/nx       evolution::find_floating_parts (the connected parts of
 //                         the stiffness graph and their free rigid-body
 //                         modes), which apply() runs when a cell pair has lost
 //                         its last intact bond; same state
@@ -58,15 +58,15 @@
 // Run: bench/run_fracture_bench.sh.
 
 #include "perimorph/assembly/bond_stretch.hpp"
-#include "perimorph/driver/bond_failure.hpp"
-#include "perimorph/driver/boundary_conditions.hpp"
-#include "perimorph/driver/floating_parts.hpp"
-#include "perimorph/driver/model.hpp"
-#include "perimorph/driver/stiffness.hpp"
+#include "perimorph/evolution/bond_failure.hpp"
+#include "perimorph/evolution/floating_parts.hpp"
 #include "perimorph/la/linear_solver.hpp"
 #include "perimorph/la/matrix.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/la/vector.hpp"
+#include "perimorph/setup/boundary_conditions.hpp"
+#include "perimorph/setup/discretization.hpp"
+#include "perimorph/system/stiffness.hpp"
 
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
@@ -155,9 +155,9 @@ casefile::CaseConfig b6_case(int nx) {
 /// most stretched bonds. Built once per nx, not timed.
 struct Setup {
   int nx;
-  driver::Model model;
-  driver::DirichletData bc;
-  driver::AssembledStiffness intact;
+  setup::Discretization model;
+  setup::DirichletData bc;
+  system::AssembledStiffness intact;
   la::Matrix A;
   la::Vector g, rhs_unit;
   std::vector<double> u;
@@ -168,9 +168,9 @@ struct Setup {
 
   explicit Setup(int n)
       : nx(n),
-        model(driver::build_model(b6_case(n))),
-        bc(driver::build_dirichlet(model)),
-        intact(driver::assemble_stiffness(model)),
+        model(setup::build_discretization(b6_case(n))),
+        bc(setup::build_dirichlet(model)),
+        intact(system::assemble_stiffness(model)),
         A(intact.K.duplicate()),
         g(dofs(), kDim),
         rhs_unit(dofs(), kDim) {
@@ -187,7 +187,7 @@ struct Setup {
     elastic = solver.solve(rhs_unit, x);
     u = x.to_std();
 
-    const driver::BondFailure failure(model);
+    const evolution::BondFailure failure(model);
     auto all = assembly::bonds_over(failure.space(), u, 0.0);
     tension = all.size();
     std::vector<std::size_t> order(all.size());
@@ -239,8 +239,8 @@ Setup& setup_for(int nx) {
 /// model, as the run builds them), and a BondFailure that has recorded A's
 /// initial diagonal (a first apply of no bond).
 struct Copies {
-  driver::ConstrainedSystem sys;
-  driver::BondFailure failure;
+  system::ConstrainedSystem sys;
+  evolution::BondFailure failure;
 
   explicit Copies(Setup& s)
       : sys(s.model, s.intact.K.duplicate(), s.bc,
@@ -271,7 +271,7 @@ void BM_FullReassembly(benchmark::State& state) {
   double assemble = 0, create = 0, local = 0, nonlocal = 0, constrain = 0, bonds = 0;
   for (auto _ : state) {
     const auto t0 = Clock::now();
-    auto assembled = driver::assemble_stiffness(s.model, &broken);
+    auto assembled = system::assemble_stiffness(s.model, &broken);
     const double t_assemble = seconds_since(t0);
     const auto t1 = Clock::now();
     la::Matrix A = assembled.K.duplicate();
@@ -301,7 +301,7 @@ void BM_Select(benchmark::State& state) {
   Setup& s = setup_for(static_cast<int>(state.range(0)));
   const auto k = static_cast<std::size_t>(state.range(1));
   s.model.config.fracture.s_crit = s.threshold(k);
-  const driver::BondFailure failure(s.model);
+  const evolution::BondFailure failure(s.model);
   double selected = 0, total = 0;
   for (auto _ : state) {
     const auto t0 = Clock::now();
@@ -390,7 +390,7 @@ void BM_Output(benchmark::State& state) {
       const auto area = c.failure.crack_area();
       benchmark::DoNotOptimize(area);
     } else {
-      const auto parts = driver::find_floating_parts(s.model, c.failure.space(), s.bc.dofs, {});
+      const auto parts = evolution::find_floating_parts(s.model, c.failure.space(), s.bc.dofs, {});
       benchmark::DoNotOptimize(parts.pins.data());
       check += parts.parts;
     }

@@ -1,5 +1,5 @@
 // Benchmark of the local (FEM) elasticity path on a unit cube of N³ hex cells,
-// through the library's own calls (as driver/static_run.cpp does):
+// through the library's own calls (as run/static_run.cpp does):
 //   matrix_create/N   build_sparsity + la::Matrix (exact preallocation)
 //   assemble/N        assemble_elasticity + finalize (Q1, 2×2×2 Gauss points)
 //   solve_<solver>/N  LinearSolver construction, set_operator and solve: CG +

@@ -184,7 +184,7 @@ def write(results, output):
     w(f"## One iteration with k = {STATE_K} newly failed bonds")
     w("")
     w(
-        "The loop of `driver::run_static` after a solve: *select* (`BondFailure::select(u)`), *apply* "
+        "The loop of `run::run_static` after a solve: *select* (`BondFailure::select(u)`), *apply* "
         "(`BondFailure::apply`: K −= the bonds' blocks, A −= them on free rows and columns, right-hand side "
         "corrected, both matrices finalized), then `set_operator(A)` and one solve warm-started from u "
         "(*solve*: GAMG set-up + CG; *PC set-up* = solve − the same solve again with the preconditioner "
@@ -268,7 +268,7 @@ def write(results, output):
         f"With the {STATE_K} most stretched bonds failed: `BondFailure::fields()` (damage index and "
         "dissipated energy per cell, for the VTU; in parallel since this commit, bit-identical for any thread count) and `crack_area()` (the CSV's crack area, from "
         "the bonds between adjacent cells). The run calls them once per increment (fields only when a VTU "
-        "is written), not per bond-breaking iteration. *floating parts*: `driver::find_floating_parts` (the "
+        "is written), not per bond-breaking iteration. *floating parts*: `evolution::find_floating_parts` (the "
         "connected parts of the stiffness graph, one intact bond looked for per cell pair, and their free "
         "rigid-body modes), which `apply` runs only in an iteration where some cell pair lost its last intact "
         "bond. ms."

@@ -139,7 +139,7 @@ peridynamics::Micromodulus kernel_for(double h) {
 }
 
 /// The reference coordinates of an n-per-direction Gauss rule (the points'
-/// boxes decide the cell graph, as in driver::build_model).
+/// boxes decide the cell graph, as in setup::build_discretization).
 std::vector<Vec3> reference_points(int n) {
   std::vector<Vec3> out;
   for (const auto& p : fem::gauss_legendre(kDim, n)) out.push_back(p.xi);

@@ -5,7 +5,7 @@
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/bonds/broken_bonds.hpp"
 #include "perimorph/bonds/nonlocal_points.hpp"
-#include "perimorph/driver/model.hpp"
+#include "perimorph/setup/discretization.hpp"
 #include "support/cases.hpp"
 
 #include <gtest/gtest.h>
@@ -29,7 +29,7 @@ TEST(BondWeights, EveryBondCountsAtBothPointsForAnyThreadCount) {
   r.transition = 0.75;
   c.alpha.regions = {r};
   c.materials[0].nu = std::numeric_limits<double>::quiet_NaN();
-  const auto model = driver::build_model(c);
+  const auto model = setup::build_discretization(c);
   const auto& nl = *model.nonlocal;
   assembly::NonlocalSpace space{model.mesh, model.dofmap, nl.points, nl.graph, nl.kernel};
   // Every bond (s = 0 > −∞ at u = 0), and as failed those crossing x = 2.

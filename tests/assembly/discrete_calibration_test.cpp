@@ -3,8 +3,8 @@
 // 2D/3D), and the factor corrects the 1D modulus of a fully non-local bar.
 
 #include "perimorph/assembly/discrete_calibration.hpp"
-#include "perimorph/driver/model.hpp"
-#include "perimorph/driver/static_run.hpp"
+#include "perimorph/run/static_run.hpp"
+#include "perimorph/setup/discretization.hpp"
 #include "support/cases.hpp"
 
 #include <gtest/gtest.h>
@@ -19,8 +19,11 @@ TEST(AssemblyDiscreteCalibration, FactorMakesTheLatticeBulkTensorMatchC0) {
     mesh::StructuredLayout layout;
     layout.spacing = Vec3::Constant(0.125);
     peridynamics::Micromodulus k{
-        dim == 1 ? peridynamics::KernelShape::constant : peridynamics::KernelShape::exponential, 0.5, 0.1,
-        1.0, {}};
+        dim == 1 ? peridynamics::KernelShape::constant : peridynamics::KernelShape::exponential,
+        0.5,
+        0.1,
+        1.0,
+        {}};
     const auto cal = peridynamics::calibrate_isotropic(k, dim, PlaneMode::strain, 1.0);
     k.scale = cal.scale;
     Eigen::MatrixXd C0 = Eigen::MatrixXd::Zero(fem::voigt_size(dim), fem::voigt_size(dim));
@@ -66,9 +69,9 @@ TEST(AssemblyDiscreteCalibration, FullyNonlocalBarHasTheLocalModulus) {
     right.constrained[0] = true;
     right.value = Vec3(0.02, 0, 0);
     c.dirichlet = {left, right};
-    const auto model = driver::build_model(c);
+    const auto model = setup::build_discretization(c);
     const auto dir = (std::filesystem::temp_directory_path() / "perimorph_discrete_cal").string();
-    const auto run = driver::run_static(model, {dir, true});
+    const auto run = run::run_static(model, {dir, true});
     const double stiffness = run.reactions[1].x() / 1e-3;  // σ / ε̄ of the bar
     std::printf("%s calibration: effective modulus %.6f\n",
                 rule == casefile::CalibrationRule::discrete ? "discrete" : "continuum", stiffness);

@@ -1,5 +1,5 @@
 // The morphed local stiffness (THEORY §3, eq. 2.28) on models built by
-// driver::build_model from small cases:
+// setup::build_discretization from small cases:
 //  - C = C₀ bitwise at points whose horizon has α ≡ 0; C = 0 bitwise (and the
 //    cell flagged purely non-local) where α ≡ 1 on the horizon;
 //  - in the morphing zone C has major symmetry, equals (1 − α)C₀ + the
@@ -11,11 +11,11 @@
 //  - the discrete energy identity of the morphing rule under a uniform strain.
 
 #include "perimorph/assembly/morphed_stiffness.hpp"
-#include "perimorph/driver/model.hpp"
-#include "perimorph/driver/stiffness.hpp"
 #include "perimorph/fem/material.hpp"
 #include "perimorph/fem/shape.hpp"
 #include "perimorph/peridynamics/pair_kernel.hpp"
+#include "perimorph/setup/discretization.hpp"
+#include "perimorph/system/stiffness.hpp"
 #include "support/cases.hpp"
 
 #include <gtest/gtest.h>
@@ -34,7 +34,7 @@ namespace {
 using casefile::KernelKind;
 
 /// Physical position of local quadrature point q of cell c (Q1 map written here).
-Vec3 local_point(const driver::Model& m, Index c, int q) {
+Vec3 local_point(const setup::Discretization& m, Index c, int q) {
   const Vec3& xi = m.rule[static_cast<std::size_t>(q)].xi;
   Vec3 x = Vec3::Zero();
   const auto nodes = m.mesh.cell(c);
@@ -48,7 +48,7 @@ Vec3 local_point(const driver::Model& m, Index c, int q) {
 
 /// The box of local quadrature point q of cell c (fem::q1_point_box_half_widths
 /// with the local rule's 1D weights).
-Vec3 local_box(const driver::Model& m, Index c, int q) {
+Vec3 local_box(const setup::Discretization& m, Index c, int q) {
   const int dim = m.dim();
   int n = 1;
   while (fem::gauss_legendre(dim, n).size() < m.rule.size()) ++n;
@@ -71,7 +71,7 @@ Eigen::MatrixXd reference_C0(const casefile::CaseConfig& c) {
 }
 
 /// min and max of α over the non-local points within δ of x, and α(x) itself.
-std::pair<double, double> horizon_alpha_range(const driver::Model& m, const Vec3& x) {
+std::pair<double, double> horizon_alpha_range(const setup::Discretization& m, const Vec3& x) {
   const auto& nl = *m.nonlocal;
   double lo = nl.alpha(x), hi = lo;
   for (std::size_t k = 0; k < nl.points.x.size(); ++k)
@@ -132,7 +132,7 @@ TEST(AssemblyMorphed, LocalWhereAlphaVanishesOnHorizonNonlocalWhereAlphaIsOne) {
       SCOPED_TRACE(::testing::Message() << dim << "D" << (orthotropic ? ", orthotropic" : ""));
       auto c = ball_case(dim);
       if (orthotropic) make_orthotropic(c);
-      const auto m = driver::build_model(c);
+      const auto m = setup::build_discretization(c);
       const Eigen::MatrixXd C0 = orthotropic ? m.nonlocal->material.C0 : reference_C0(c);
       const auto& morph = m.nonlocal->morph;
       const int nq = static_cast<int>(m.rule.size());
@@ -178,7 +178,7 @@ TEST(AssemblyMorphed, MorphingZoneSymmetries) {
   for (int dim : {2, 3}) {
     SCOPED_TRACE(::testing::Message() << dim << "D");
     const auto c = ball_case(dim);
-    const auto m = driver::build_model(c);
+    const auto m = setup::build_discretization(c);
     const auto& nl = *m.nonlocal;
     const Eigen::MatrixXd C0 = reference_C0(c);
     const int nq = static_cast<int>(m.rule.size());
@@ -233,7 +233,7 @@ TEST(AssemblyMorphed, PartitionRuleIsExactlyOneMinusAlphaTimesC0) {
     for (auto profile : {casefile::AlphaProfile::linear, casefile::AlphaProfile::cubic}) {
       auto c = ball_case(dim, profile);
       c.nonlocal.coupling = casefile::Coupling::partition;
-      const auto m = driver::build_model(c);
+      const auto m = setup::build_discretization(c);
       const Eigen::MatrixXd C0 = reference_C0(c);
       const int nq = static_cast<int>(m.rule.size());
       int fractional = 0;
@@ -312,7 +312,7 @@ TEST(AssemblyMorphed, OneDimensionalStiffnessIsBetaTimesE0) {
       region.transition = L;
       region.profile = profile;
       c.alpha.regions = {region};
-      const auto m = driver::build_model(c);
+      const auto m = setup::build_discretization(c);
       const double E = reference_C0(c)(0, 0);
       const bool cubic = profile == casefile::AlphaProfile::cubic;
       // α and c written independently of the library.
@@ -393,7 +393,7 @@ TEST(AssemblyMorphed, DiscreteEnergyIdentityUnderUniformStrain) {
     c.model.thickness = thickness;
     c.nonlocal.horizon_edge = edge;
     if (orthotropic) make_orthotropic(c);
-    const auto m = driver::build_model(c);
+    const auto m = setup::build_discretization(c);
     const auto& nl = *m.nonlocal;
     const Eigen::MatrixXd C0 = orthotropic ? nl.material.C0 : reference_C0(c);
     if (orthotropic) {
@@ -464,8 +464,8 @@ TEST(AssemblyMorphed, DiscreteEnergyIdentityUnderUniformStrain) {
 
 /// ½ uᵀKu for u = G x on every node.
 double uniform_strain_energy(const casefile::CaseConfig& c) {
-  const auto m = driver::build_model(c);
-  const Eigen::MatrixXd K = driver::assemble_stiffness(m).K.to_dense();
+  const auto m = setup::build_discretization(c);
+  const Eigen::MatrixXd K = system::assemble_stiffness(m).K.to_dense();
   Mat3 G = Mat3::Zero();
   G(0, 0) = 1e-3;
   if (c.dim() > 1) G.row(1) << 3e-4, -2e-4, 0.0;

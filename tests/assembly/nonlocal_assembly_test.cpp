@@ -7,7 +7,7 @@
 
 #include "perimorph/assembly/nonlocal_assembly.hpp"
 #include "perimorph/assembly/bond_stretch.hpp"
-#include "perimorph/driver/model.hpp"
+#include "perimorph/setup/discretization.hpp"
 #include "support/cases.hpp"
 #include "support/dense_inserter.hpp"
 
@@ -18,7 +18,7 @@
 namespace perimorph {
 namespace {
 
-Eigen::MatrixXd assemble(const driver::Model& m, const assembly::NonlocalOptions& options,
+Eigen::MatrixXd assemble(const setup::Discretization& m, const assembly::NonlocalOptions& options,
                          assembly::NonlocalStats* stats = nullptr) {
   const auto& nl = *m.nonlocal;
   testing::DenseInserter K(m.dofmap.num_dofs());
@@ -31,7 +31,7 @@ Eigen::MatrixXd assemble(const driver::Model& m, const assembly::NonlocalOptions
 /// A hybrid 3D block with a pre-crack cut: α ≡ 1 on the 8 cells about
 /// (1.0, 0.5, 0.25), whose pairs go through the translation cache; the cut
 /// (plane x = 0.125, y < 0.5) is far enough from them.
-driver::Model cut_block(casefile::HorizonEdge edge) {
+setup::Discretization cut_block(casefile::HorizonEdge edge) {
   auto c = testing::box_case(3, {10, 8, 4}, Vec3(1.25, 1.0, 0.5), 90.0, 0.25);
   testing::add_nonlocal(c, casefile::KernelKind::exponential, 0.3, 0.06, 2);
   c.nonlocal.horizon_edge = edge;
@@ -41,7 +41,7 @@ driver::Model cut_block(casefile::HorizonEdge edge) {
   cut.edge1 = Vec3(0.0, 0.5, 0.0);
   cut.edge2 = Vec3(0.0, 0.0, 0.5);
   c.mesh.cuts = {cut};
-  return driver::build_model(c);
+  return setup::build_discretization(c);
 }
 
 TEST(AssemblyNonlocal, OptimizationsDoNotChangeTheMatrix) {
@@ -87,9 +87,9 @@ TEST(AssemblyNonlocal, PartialVolumeAddsEdgeBondsOnly) {
   auto c = testing::box_case(2, {12, 12, 1}, Vec3(1.0, 1.0, 0), 1.0, 0.25);
   testing::add_nonlocal(c, casefile::KernelKind::constant, 0.25, 0.0, 3);
   c.alpha.value = 1.0;
-  const auto cut = driver::build_model(c);
+  const auto cut = setup::build_discretization(c);
   c.nonlocal.horizon_edge = casefile::HorizonEdge::partial_volume;
-  const auto pv = driver::build_model(c);
+  const auto pv = setup::build_discretization(c);
   assembly::NonlocalStats s_cut, s_pv;
   const Eigen::MatrixXd A = assemble(cut, {}, &s_cut), B = assemble(pv, {}, &s_pv);
   std::printf("bonds: cut-off %zu, partial volume %zu; max|K_pv − K_cut|/max|K| = %.3e\n", s_cut.bonds,

@@ -1,5 +1,5 @@
 // [[node_set]]: named node sets selected by a box. The parser checks names
-// and boxes; which nodes a box selects is checked in tests/driver/node_set_test.cpp.
+// and boxes; which nodes a box selects is checked in tests/setup/node_set_test.cpp.
 
 #include "perimorph/casefile/parse_case.hpp"
 #include "perimorph/core/error.hpp"

@@ -1,5 +1,5 @@
 # `perimorph gc`: the critical energy release rate of a crack plane (closed
-# form, actual geometry, bulk window; driver/effective_gc.hpp) and its messages
+# form, actual geometry, bulk window; diagnostics/effective_gc.hpp) and its messages
 # for planes that cannot be used. The case is written here: a 4 x 4 plate
 # (thickness 0.5), fully non-local, constant kernel, delta = 1, h = 1/4.
 set(PM_GC_EXE $<TARGET_FILE:perimorph_cli>)

@@ -11,3 +11,18 @@ add_test(NAME peridynamics_includes_no_later_stage
 add_test(NAME core_includes_only_core
   COMMAND ${PM_CHECK_INCLUDES} -DUNDER=src/perimorph/core -DALLOWED=core
           -P ${PROJECT_SOURCE_DIR}/cmake/check_includes.cmake)
+# The run's stages point one way: setup → system → evolution → run; diagnostics
+# read a set-up (and its system) but nothing of a run.
+set(PM_BELOW_SETUP core,casefile,mesh,fem,peridynamics,alpha,dofs,bonds,assembly,io)
+foreach(rule "setup:${PM_BELOW_SETUP},setup"
+             "system:${PM_BELOW_SETUP},la,setup,system"
+             "evolution:${PM_BELOW_SETUP},la,setup,system,evolution"
+             "run:${PM_BELOW_SETUP},la,setup,system,evolution,run"
+             "diagnostics:${PM_BELOW_SETUP},la,setup,system,diagnostics")
+  string(REPLACE ":" ";" parts "${rule}")
+  list(GET parts 0 stage)
+  list(GET parts 1 allowed)
+  add_test(NAME ${stage}_includes_only_earlier_stages
+    COMMAND ${PM_CHECK_INCLUDES} -DUNDER=src/perimorph/${stage} -DALLOWED=${allowed}
+            -P ${PROJECT_SOURCE_DIR}/cmake/check_includes.cmake)
+endforeach()

@@ -8,7 +8,7 @@
 #include "perimorph/assembly/nonlocal_assembly.hpp"
 #include "perimorph/assembly/sparsity.hpp"
 #include "perimorph/core/error.hpp"
-#include "perimorph/driver/model.hpp"
+#include "perimorph/setup/discretization.hpp"
 #include "support/cases.hpp"
 #include "support/dense_inserter.hpp"
 
@@ -32,7 +32,7 @@ TEST(LaMatrix, DirectInsertionEqualsDenseAccumulationBitwise) {
   auto c = testing::box_case(3, {5, 5, 5}, Vec3::Ones(), 90.0, 0.25);
   testing::add_nonlocal(c, casefile::KernelKind::exponential, 0.5, 0.1, 2);
   c.alpha.regions = {testing::alpha_ball(Vec3::Constant(0.5), 0.15, 0.2)};
-  const auto m = driver::build_model(c);
+  const auto m = setup::build_discretization(c);
   const auto& nl = *m.nonlocal;
   const assembly::NonlocalSpace space{m.mesh, m.dofmap, nl.points, nl.graph, nl.kernel};
   la::Matrix K(assembly::build_sparsity(m.dofmap, &nl.graph));

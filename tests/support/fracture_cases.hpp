@@ -1,6 +1,6 @@
 #pragma once
 // Test support for the fracture tests: the pulled bar, plate and block of
-// tests/driver/fracture_test.cpp, and a reader of the run's numeric CSVs.
+// tests/evolution/fracture_test.cpp, and a reader of the run's numeric CSVs.
 
 #include "perimorph/casefile/case_config.hpp"
 #include "support/cases.hpp"

@@ -1,7 +1,7 @@
 // Case-file parsing of [[node_set]]: named node sets selected by a box, for
 // boundary conditions on single nodes or node rows. Format in
 // docs/case-file.md; conventions as in parse_case.cpp. Which nodes a box
-// selects is decided when the mesh is built (driver/model.cpp build_mesh).
+// selects is decided when the mesh is built (setup/discretization.cpp build_mesh).
 
 #include "perimorph/casefile/parse_sets.hpp"
 

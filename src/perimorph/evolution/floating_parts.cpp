@@ -1,0 +1,184 @@
+#include "perimorph/evolution/floating_parts.hpp"
+
+#include "perimorph/assembly/bond_stretch.hpp"
+#include "perimorph/core/error.hpp"
+#include "perimorph/dofs/dof_map.hpp"
+
+#include <fmt/format.h>
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace perimorph::evolution {
+
+namespace {
+
+class UnionFind {
+ public:
+  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), Index{0}); }
+  Index find(Index a) {
+    while (parent_[static_cast<std::size_t>(a)] != a) {
+      parent_[static_cast<std::size_t>(a)] =
+          parent_[static_cast<std::size_t>(parent_[static_cast<std::size_t>(a)])];
+      a = parent_[static_cast<std::size_t>(a)];
+    }
+    return a;
+  }
+  /// The smaller root becomes the parent, so a part's root is its smallest node.
+  void join(Index a, Index b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return;
+    if (b < a) std::swap(a, b);
+    parent_[static_cast<std::size_t>(b)] = a;
+  }
+
+ private:
+  std::vector<Index> parent_;
+};
+
+constexpr int rigid_modes(int dim) {
+  return dim == 1 ? 1 : dim == 2 ? 3 : 6;
+}
+
+/// Value of each rigid-body mode at component d of a node at p (relative to
+/// the part's centre, in units of its size): translations, then rotations.
+Eigen::VectorXd mode_row(int dim, const Vec3& p, int d) {
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(rigid_modes(dim));
+  r[d] = 1.0;
+  if (dim == 2) {
+    r[2] = d == 0 ? -p.y() : p.x();  // u = (−y, x)
+  } else if (dim == 3) {
+    const double x = p.x(), y = p.y(), z = p.z();
+    const double about_x[3] = {0.0, -z, y}, about_y[3] = {z, 0.0, -x}, about_z[3] = {-y, x, 0.0};
+    r[3] = about_x[d];
+    r[4] = about_y[d];
+    r[5] = about_z[d];
+  }
+  return r;
+}
+
+/// An orthonormal basis grown one vector at a time (modified Gram–Schmidt).
+struct Span {
+  std::vector<Eigen::VectorXd> basis;
+  /// Adds the part of `row` outside the span if it is at least `tol` × |row|.
+  bool add(const Eigen::VectorXd& row, double tol) {
+    const double norm = row.norm();
+    if (norm == 0.0) return false;
+    Eigen::VectorXd r = row;
+    for (const auto& q : basis) r -= q.dot(r) * q;
+    if (r.norm() <= tol * norm) return false;
+    basis.push_back(r / r.norm());
+    return true;
+  }
+};
+
+}  // namespace
+
+FloatingParts find_floating_parts(const setup::Discretization& model, const assembly::NonlocalSpace& space,
+                                  std::span<const Index> held, std::span<const double> force) {
+  const auto& dm = model.dofmap;
+  const int dim = model.dim();
+  const int nr = rigid_modes(dim);
+  const Index nn = dm.num_nodes();
+  UnionFind parts(static_cast<std::size_t>(nn));
+  std::vector<char> stiff(static_cast<std::size_t>(nn), 0);
+  auto join_cell = [&](Index c, Index anchor) {
+    for (Index a : dm.cell_nodes(c)) {
+      parts.join(anchor, a);
+      stiff[static_cast<std::size_t>(a)] = 1;
+    }
+  };
+  for (Index c = 0; c < model.mesh.num_cells(); ++c)
+    if (model.has_local_stiffness(c)) join_cell(c, dm.cell_nodes(c).front());
+  for (const auto& [e, f] : assembly::bonded_pairs(space)) {
+    const Index anchor = dm.cell_nodes(e).front();
+    join_cell(e, anchor);
+    join_cell(f, anchor);
+  }
+  // Nodes of each part (roots are the smallest node, so parts come in order).
+  std::vector<std::vector<Index>> members;
+  std::vector<Index> part_of_root(static_cast<std::size_t>(nn), -1);
+  for (Index a = 0; a < nn; ++a) {
+    if (!stiff[static_cast<std::size_t>(a)]) continue;
+    const Index r = parts.find(a);
+    auto& slot = part_of_root[static_cast<std::size_t>(r)];
+    if (slot < 0) {
+      slot = static_cast<Index>(members.size());
+      members.emplace_back();
+    }
+    members[static_cast<std::size_t>(slot)].push_back(a);
+  }
+  std::vector<char> is_held(static_cast<std::size_t>(dm.num_dofs()), 0);
+  for (Index d : held) is_held[static_cast<std::size_t>(d)] = 1;
+
+  FloatingParts out;
+  for (const auto& nodes : members) {
+    Vec3 centre = Vec3::Zero();
+    for (Index a : nodes) centre += dm.node_coordinate(a);
+    centre /= static_cast<double>(nodes.size());
+    double size = 0.0;
+    for (Index a : nodes) size = std::max(size, (dm.node_coordinate(a) - centre).norm());
+    if (size == 0.0) size = 1.0;
+    auto rel = [&](Index a) -> Vec3 { return (dm.node_coordinate(a) - centre) / size; };
+    Span span;
+    for (Index a : nodes)
+      for (int d = 0; d < dim; ++d)
+        if (is_held[static_cast<std::size_t>(a * dim + d)]) span.add(mode_row(dim, rel(a), d), 1e-8);
+    if (static_cast<int>(span.basis.size()) == nr) continue;
+    ++out.parts;
+    // The free modes: the complement of the held rows' span.
+    Span all = span;
+    std::vector<Eigen::VectorXd> free_modes;
+    for (int k = 0; k < nr; ++k)
+      if (all.add(Eigen::VectorXd::Unit(nr, k), 1e-8)) free_modes.push_back(all.basis.back());
+    if (!force.empty()) {
+      for (const auto& m : free_modes) {
+        double work = 0.0, scale = 0.0;
+        for (Index a : nodes)
+          for (int d = 0; d < dim; ++d) {
+            const double F = force[static_cast<std::size_t>(a * dim + d)];
+            const Eigen::VectorXd row = mode_row(dim, rel(a), d);
+            work += F * row.dot(m);
+            scale += std::abs(F) * row.norm();
+          }
+        if (scale > 0.0 && std::abs(work) > 1e-9 * scale) {
+          Vec3 lo = dm.node_coordinate(nodes.front()), hi = lo;
+          for (Index a : nodes) {
+            lo = lo.cwiseMin(dm.node_coordinate(a));
+            hi = hi.cwiseMax(dm.node_coordinate(a));
+          }
+          throw Error(
+              fmt::format("bond failures have cut free a part of {} nodes (between ({:g}, {:g}, {:g}) and "
+                          "({:g}, {:g}, {:g})) "
+                          "that no support holds in every direction, and the applied forces on it do not "
+                          "balance: there is "
+                          "no quasi-static equilibrium (the part would fly off)",
+                          nodes.size(), lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z()));
+        }
+      }
+    }
+    // Pins: the part's nodes from the farthest from its centre inwards (long
+    // lever arms), a dof kept when it removes a mode well (then any mode).
+    std::vector<Index> order(nodes);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](Index a, Index b) { return rel(a).squaredNorm() > rel(b).squaredNorm(); });
+    for (double tol : {0.3, 1e-8})
+      for (Index a : order)
+        for (int d = 0; d < dim && static_cast<int>(span.basis.size()) < nr; ++d) {
+          const Index dof = a * dim + d;
+          if (is_held[static_cast<std::size_t>(dof)]) continue;
+          if (span.add(mode_row(dim, rel(a), d), tol)) {
+            out.pins.push_back(dof);
+            is_held[static_cast<std::size_t>(dof)] = 1;
+          }
+        }
+    PERIMORPH_ASSERT(static_cast<int>(span.basis.size()) == nr, "a floating part could not be pinned");
+  }
+  std::sort(out.pins.begin(), out.pins.end());
+  return out;
+}
+
+}  // namespace perimorph::evolution

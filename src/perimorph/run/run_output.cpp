@@ -1,0 +1,204 @@
+#include "perimorph/run/run_output.hpp"
+
+#include "perimorph/core/error.hpp"
+#include "perimorph/io/grid.hpp"
+#include "perimorph/io/vtu_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <filesystem>
+
+namespace perimorph::run {
+
+namespace {
+
+/// Voigt (engineering shear) to a row-major 3×3 tensor; `engineering` halves shears.
+std::array<double, 9> voigt_to_tensor(const double* v, int dim, bool engineering) {
+  const double h = engineering ? 0.5 : 1.0;
+  std::array<double, 9> t{};
+  if (dim == 1) {
+    t[0] = v[0];
+  } else if (dim == 2) {
+    t[0] = v[0];
+    t[4] = v[1];
+    t[1] = t[3] = h * v[2];
+  } else {
+    t[0] = v[0];
+    t[4] = v[1];
+    t[8] = v[2];
+    t[5] = t[7] = h * v[3];
+    t[2] = t[6] = h * v[4];
+    t[1] = t[3] = h * v[5];
+  }
+  return t;
+}
+
+io::VtkCell vtk_cell(int dim) {
+  return dim == 1 ? io::VtkCell::line : dim == 2 ? io::VtkCell::quad : io::VtkCell::hexahedron;
+}
+
+}  // namespace
+
+RunOutput::RunOutput(const setup::Discretization& model, std::string directory, std::string basename,
+                     std::vector<std::string> reaction_names)
+    : directory_(std::move(directory)),
+      basename_(std::move(basename)),
+      dim_(model.dim()),
+      fracture_(model.config.fracture.enabled) {
+  std::error_code ec;
+  std::filesystem::create_directories(directory_, ec);
+  if (ec) throw InputError(fmt::format("cannot create output directory '{}': {}", directory_, ec.message()));
+  std::vector<std::string> columns{"increment", "load_factor"};
+  const char* axes = "xyz";
+  for (const auto& name : reaction_names)
+    for (int d = 0; d < dim_; ++d) columns.push_back(fmt::format("reaction_{}_{}", name, axes[d]));
+  for (const char* c :
+       {"strain_energy", "external_work", "solver_iterations", "relative_residual", "wall_time"})
+    columns.emplace_back(c);
+  if (fracture_)
+    for (const char* c :
+         {"dissipated_energy", "dissipated_increment", "overshoot_energy", "released_energy", "bonds_broken",
+          "bonds_broken_increment", "break_iterations", "crack_area", "broken_face_area", "floating_parts"})
+      columns.emplace_back(c);
+  csv_ = std::make_unique<io::CsvTable>(csv_path(), std::move(columns));
+  if (fracture_)
+    failures_csv_ = std::make_unique<io::CsvTable>(
+        failures_csv_path(),
+        std::vector<std::string>{"increment", "iteration", "bonds_failed", "dissipated_energy",
+                                 "overshoot_energy", "max_stretch_ratio", "solver_iterations"});
+  if (fracture_ && model.config.output.failed_bonds)
+    failed_bonds_csv_ = std::make_unique<io::CsvTable>(
+        (std::filesystem::path(directory_) / (basename_ + "_failed_bonds.csv")).string(),
+        std::vector<std::string>{"increment", "iteration", "xg", "yg", "zg", "xh", "yh", "zh", "stretch",
+                                 "dissipated_energy", "overshoot_energy"});
+  if (model.config.output.vtu) pvd_ = std::make_unique<io::PvdCollection>(pvd_path());
+}
+
+std::string RunOutput::csv_path() const {
+  return (std::filesystem::path(directory_) / (basename_ + ".csv")).string();
+}
+std::string RunOutput::pvd_path() const {
+  return (std::filesystem::path(directory_) / (basename_ + ".pvd")).string();
+}
+std::string RunOutput::vtu_path(int increment) const {
+  return (std::filesystem::path(directory_) / fmt::format("{}_{:04d}.vtu", basename_, increment)).string();
+}
+std::string RunOutput::failures_csv_path() const {
+  return fracture_ ? (std::filesystem::path(directory_) / (basename_ + "_failures.csv")).string() : "";
+}
+
+void RunOutput::write_increment_vtu(const setup::Discretization& model, int increment, double load_factor,
+                                    std::span<const double> u, const evolution::FractureFields& fracture) {
+  if (!pvd_) return;
+  const auto& dm = model.dofmap;
+  io::UnstructuredGrid grid;
+  grid.points = dm.node_coordinates();
+  grid.nodes_per_cell = model.mesh.nodes_per_cell();
+  grid.cell_type = vtk_cell(dim_);
+  // Points are the dof nodes; a DG degree 0 cell is drawn with its own corner
+  // points, all carrying the displacement of its centroid node.
+  std::vector<Index> point_dof_node(static_cast<std::size_t>(dm.num_nodes()));
+  for (Index n = 0; n < dm.num_nodes(); ++n) point_dof_node[static_cast<std::size_t>(n)] = n;
+  for (Index c = 0; c < dm.num_cells(); ++c) {
+    const auto nodes = dm.cell_nodes(c);
+    if (static_cast<int>(nodes.size()) == grid.nodes_per_cell) {
+      grid.connectivity.insert(grid.connectivity.end(), nodes.begin(), nodes.end());
+      continue;
+    }
+    for (Index corner : model.mesh.cell(c)) {
+      grid.connectivity.push_back(static_cast<Index>(grid.points.size()));
+      grid.points.push_back(model.mesh.node(corner));
+      point_dof_node.push_back(nodes[0]);
+    }
+  }
+
+  io::Field disp{"displacement", 3, std::vector<double>(grid.points.size() * 3, 0.0)};
+  for (std::size_t p = 0; p < grid.points.size(); ++p)
+    for (int d = 0; d < dim_; ++d)
+      disp.values[p * 3 + static_cast<std::size_t>(d)] =
+          u[static_cast<std::size_t>(point_dof_node[p] * dim_ + d)];
+  grid.point_data.push_back(std::move(disp));
+  if (model.nonlocal) {
+    io::Field alpha{"alpha", 1, {}};
+    for (const Vec3& x : grid.points) alpha.values.push_back(model.nonlocal->alpha(x));
+    grid.point_data.push_back(std::move(alpha));
+  }
+
+  const auto fields = assembly::cell_strain_stress(model.local_space(), model.stiffness, u);
+  const int nv = fem::voigt_size(dim_);
+  io::Field strain{"strain", 9, {}}, stress{"stress", 9, {}}, region{"region", 1, {}},
+      energy{"strain_energy_density", 1, {}};
+  for (Index c = 0; c < dm.num_cells(); ++c) {
+    const auto e = voigt_to_tensor(&fields.strain[static_cast<std::size_t>(c * nv)], dim_, true);
+    const auto s = voigt_to_tensor(&fields.stress[static_cast<std::size_t>(c * nv)], dim_, false);
+    strain.values.insert(strain.values.end(), e.begin(), e.end());
+    stress.values.insert(stress.values.end(), s.begin(), s.end());
+    region.values.push_back(model.mesh.cell_region[static_cast<std::size_t>(c)]);
+    energy.values.push_back(fields.energy_density[static_cast<std::size_t>(c)]);
+  }
+  grid.cell_data = {std::move(strain), std::move(stress), std::move(region), std::move(energy)};
+  if (model.nonlocal) {
+    // α at the local quadrature points (cell mean) and the element kind:
+    // 0 local/morphing (CG), 1 purely non-local CG, 2 DG, 3 DG degree 0.
+    const auto& nl = *model.nonlocal;
+    const std::size_t nq = model.rule.size();
+    io::Field alpha_cell{"alpha_mean", 1, {}}, kind{"element_kind", 1, {}};
+    for (Index c = 0; c < dm.num_cells(); ++c) {
+      double a = 0.0;
+      for (std::size_t q = 0; q < nq; ++q) a += nl.morph.alpha[static_cast<std::size_t>(c) * nq + q];
+      alpha_cell.values.push_back(a / static_cast<double>(nq));
+      const auto k = dm.continuity(c);
+      kind.values.push_back(k == dofs::Continuity::discontinuous                    ? 2.0
+                            : k == dofs::Continuity::discontinuous_constant         ? 3.0
+                            : nl.morph.purely_nonlocal[static_cast<std::size_t>(c)] ? 1.0
+                                                                                    : 0.0);
+    }
+    grid.cell_data.push_back(std::move(alpha_cell));
+    grid.cell_data.push_back(std::move(kind));
+  }
+  if (!fracture.damage.empty()) grid.cell_data.push_back({"damage", 1, fracture.damage});
+  if (!fracture.dissipated.empty()) grid.cell_data.push_back({"dissipated_energy", 1, fracture.dissipated});
+
+  io::write_vtu(vtu_path(increment), grid);
+  pvd_->add(load_factor, std::filesystem::path(vtu_path(increment)).filename().string());
+}
+
+void RunOutput::add_row(const IncrementRecord& r) {
+  std::vector<double> row{static_cast<double>(r.increment), r.load_factor};
+  for (const Vec3& f : r.reactions)
+    for (int d = 0; d < dim_; ++d) row.push_back(f[d]);
+  row.insert(row.end(), {r.strain_energy, r.external_work, static_cast<double>(r.iterations),
+                         r.relative_residual, r.wall_time});
+  if (fracture_)
+    row.insert(row.end(), {r.dissipated, r.dissipated_increment, r.overshoot, r.released,
+                           static_cast<double>(r.bonds_broken), static_cast<double>(r.bonds_broken_increment),
+                           static_cast<double>(r.break_iterations), r.crack_area, r.broken_face_area,
+                           static_cast<double>(r.floating_parts)});
+  csv_->add_row(row);
+}
+
+void RunOutput::add_failure_row(int increment, int iteration, std::size_t bonds,
+                                const evolution::FailureEnergy& energy, double max_ratio,
+                                int solver_iterations) {
+  if (!failures_csv_) return;
+  failures_csv_->add_row({static_cast<double>(increment), static_cast<double>(iteration),
+                          static_cast<double>(bonds), energy.dissipated, energy.overshoot, max_ratio,
+                          static_cast<double>(solver_iterations)});
+}
+
+void RunOutput::add_failed_bonds(const setup::Discretization& model, int increment, int iteration,
+                                 std::span<const assembly::StretchedBond> bonds, double s_crit) {
+  if (!failed_bonds_csv_) return;
+  const auto& pts = model.nonlocal->points;
+  for (const auto& b : bonds) {
+    const Vec3& xg = pts.x[pts.index(b.id.e, b.id.g)];
+    const Vec3& xh = pts.x[pts.index(b.id.f, b.id.h)];
+    const double critical = assembly::energy_at_stretch(b, s_crit);
+    failed_bonds_csv_->add_row({static_cast<double>(increment), static_cast<double>(iteration), xg.x(),
+                                xg.y(), xg.z(), xh.x(), xh.y(), xh.z(), b.stretch, critical,
+                                b.energy - critical});
+  }
+}
+
+}  // namespace perimorph::run

@@ -1,0 +1,78 @@
+#pragma once
+// What a run writes: a VTU per output increment collected in a PVD, and one
+// CSV row per increment (THEORY-independent bookkeeping; format in
+// docs/output.md).
+
+#include "perimorph/assembly/bond_stretch.hpp"
+#include "perimorph/evolution/bond_failure.hpp"
+#include "perimorph/io/csv_table.hpp"
+#include "perimorph/io/pvd_writer.hpp"
+#include "perimorph/setup/discretization.hpp"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace perimorph::run {
+
+struct IncrementRecord {
+  int increment = 0;
+  double load_factor = 0.0;
+  std::vector<Vec3> reactions;  ///< one per reaction set
+  double strain_energy = 0.0;
+  double external_work = 0.0;
+  int iterations = 0;
+  double relative_residual = 0.0;
+  double wall_time = 0.0;  ///< seconds since the start of the run
+  // Fracture runs only (THEORY §5):
+  double dissipated = 0.0;            ///< D: every failed bond's energy at s_crit, cumulative (THEORY §5)
+  double dissipated_increment = 0.0;  ///< the part of D from this increment
+  double overshoot = 0.0;             ///< energy the failed bonds held beyond s_crit, cumulative
+  double released = 0.0;         ///< W − U − D − overshoot: released by re-equilibration after failures
+  std::size_t bonds_broken = 0;  ///< failed bonds, cumulative (pre-crack cuts not counted)
+  std::size_t bonds_broken_increment = 0;
+  int break_iterations = 0;        ///< solves after the first one in this increment
+  double crack_area = 0.0;         ///< evolution::BondFailure::crack_area().projected
+  double broken_face_area = 0.0;   ///< evolution::BondFailure::crack_area().total
+  std::size_t floating_parts = 0;  ///< parts cut free and held by a minimal support, cumulative
+};
+
+class RunOutput {
+ public:
+  /// Creates `directory` (and parents). Files: BASENAME.csv, BASENAME.pvd,
+  /// BASENAME_NNNN.vtu.
+  RunOutput(const setup::Discretization& model, std::string directory, std::string basename,
+            std::vector<std::string> reaction_names);
+
+  void write_increment_vtu(const setup::Discretization& model, int increment, double load_factor,
+                           std::span<const double> u, const evolution::FractureFields& fracture = {});
+  void add_row(const IncrementRecord& r);
+  /// Fracture runs: one row per bond-breaking iteration in BASENAME_failures.csv
+  /// (increment, iteration, bonds failed, their energy at s_crit and beyond,
+  /// the largest s/s_crit, Krylov iterations of the re-solve).
+  void add_failure_row(int increment, int iteration, std::size_t bonds,
+                       const evolution::FailureEnergy& energy, double max_ratio, int solver_iterations);
+  /// With [output] failed_bonds: one row per bond of `bonds` in
+  /// BASENAME_failed_bonds.csv (its points, stretch, energy at s_crit and
+  /// beyond; docs/output.md). Bonds already failed are the caller's to skip.
+  void add_failed_bonds(const setup::Discretization& model, int increment, int iteration,
+                        std::span<const assembly::StretchedBond> bonds, double s_crit);
+
+  const std::string& directory() const { return directory_; }
+  std::string csv_path() const;
+  std::string pvd_path() const;
+  /// The VTU of an increment (written or not: [output] vtu may be false).
+  std::string vtu_path(int increment) const;
+  /// BASENAME_failures.csv ("" for a run without [fracture]).
+  std::string failures_csv_path() const;
+  bool writes_vtu() const { return pvd_ != nullptr; }
+
+ private:
+  std::string directory_, basename_;
+  int dim_;
+  bool fracture_ = false;
+  std::unique_ptr<io::CsvTable> csv_, failures_csv_, failed_bonds_csv_;
+  std::unique_ptr<io::PvdCollection> pvd_;
+};
+
+}  // namespace perimorph::run

@@ -1,0 +1,70 @@
+#pragma once
+// The quasi-static driver of the local model (issue 2): for each increment of
+// the load ramp, solve K u = F with the constraints eliminated, then report
+// reactions, energies and fields. Later stages (bond breaking, damage,
+// adaptivity) plug into the same loop.
+
+#include "perimorph/evolution/bond_failure.hpp"
+#include "perimorph/la/linear_solver.hpp"
+#include "perimorph/run/run_output.hpp"
+#include "perimorph/setup/boundary_conditions.hpp"
+#include "perimorph/setup/discretization.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace perimorph::io {
+class ProgressLine;
+}
+
+namespace perimorph::run {
+
+struct RunOptions {
+  std::string output_directory;  ///< overrides the case's [output] directory if not empty
+  bool quiet = false;            ///< no progress line
+  /// The progress line to continue (the caller's, which showed the set-up
+  /// before the run, so that its elapsed time counts from the program's
+  /// start); null: the run draws its own (unless quiet). Warnings go to it.
+  io::ProgressLine* progress = nullptr;
+};
+
+/// What a run needs besides the stiffness, built from the case before any
+/// assembly, so that a case error stops `run` early and `check` finds every
+/// error `run` would find before solving: the constraints, the loads, the
+/// reaction sets and, with [fracture], the bond-failure set-up (critical
+/// stretch, no_fail regions). Throws InputError naming the case-file entry.
+struct RunSetup {
+  setup::DirichletData bc;
+  std::vector<double> F;  ///< external force at load factor 1
+  std::vector<setup::ReactionSet> sets;
+  std::optional<evolution::BondFailure> failure;  ///< with [fracture]
+};
+RunSetup prepare_run(const setup::Discretization& model);
+
+struct RunSummary {
+  int increments_done = 0;
+  std::vector<double> displacement;  ///< last solution (dof vector)
+  std::vector<std::string> reaction_names;
+  std::vector<Vec3> reactions;  ///< last increment, per reaction set
+  double strain_energy = 0.0;
+  double external_work = 0.0;
+  la::SolveReport last_solve;
+  std::vector<IncrementRecord> history;  ///< one record per completed increment (what the CSV holds)
+  std::string output_directory, csv_path, pvd_path;
+};
+
+/// Output directory of a case: the override if given, else the case's
+/// [output] directory resolved against the case file's folder.
+std::string resolve_output_directory(const casefile::CaseConfig& config, const RunOptions& options);
+
+/// Runs every increment. PETSc options of the case are inserted first (the
+/// command line keeps precedence); after the first solve, options that PETSc
+/// did not use are reported as a warning (la::unused_options). On a solver
+/// failure throws SolverError saying which increment failed; what was computed
+/// before stays on disk. With [fracture], an increment that still breaks bonds
+/// after max_iterations iterations stops the run (Error): its state after the
+/// last iteration is written (CSV row and VTU) and the message names the files.
+RunSummary run_static(const setup::Discretization& model, const RunOptions& options);
+
+}  // namespace perimorph::run

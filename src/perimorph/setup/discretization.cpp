@@ -1,0 +1,192 @@
+#include "perimorph/setup/discretization.hpp"
+
+#include "perimorph/assembly/discrete_calibration.hpp"
+
+#include "perimorph/core/error.hpp"
+#include "perimorph/mesh/box.hpp"
+#include "perimorph/mesh/cut.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+
+namespace perimorph::setup {
+
+namespace {
+
+bool inside(const Vec3& x, const Vec3& lo, const Vec3& hi, int dim) {
+  for (int d = 0; d < dim; ++d)
+    if (x[d] < lo[d] || x[d] > hi[d]) return false;
+  return true;
+}
+
+/// "[0, 24]": the first n components of v.
+std::string point(const Vec3& v, int n) {
+  return fmt::format("[{}]", fmt::join(v.data(), v.data() + n, ", "));
+}
+
+/// Fills m.node_sets[s.name] with the nodes in the box of s, widened by tol.
+void add_node_set(mesh::Mesh& m, const casefile::NodeSetSpec& s, double tol) {
+  const int dim = m.dim();
+  const auto names = m.set_names();
+  if (std::find(names.begin(), names.end(), s.name) != names.end())
+    throw InputError(
+        fmt::format("{}: node set '{}': the mesh already has a set of that name; choose another name",
+                    s.where.describe(), s.name));
+  const Vec3 lo = s.lower - Vec3::Constant(tol), hi = s.upper + Vec3::Constant(tol);
+  std::vector<Index> nodes;
+  for (Index n = 0; n < m.num_nodes(); ++n)
+    if (inside(m.node(n), lo, hi, dim)) nodes.push_back(n);
+  if (nodes.empty())
+    throw InputError(
+        fmt::format("{}: node set '{}' (box {} to {}) selects no mesh node; enlarge its box to reach "
+                    "a node (the mesh spans {} to {})",
+                    s.where.describe(), s.name, point(s.lower, dim), point(s.upper, dim),
+                    point(m.bounding_box().first, dim), point(m.bounding_box().second, dim)));
+  m.node_sets[s.name] = std::move(nodes);
+}
+
+}  // namespace
+
+mesh::Mesh build_mesh(const casefile::CaseConfig& config) {
+  const auto& box = config.mesh.box;
+  mesh::Mesh m = mesh::make_box({box.dim, box.lower, box.upper, box.cells});
+  for (const auto& r : config.regions) {
+    std::vector<Index> cells;
+    for (Index c = 0; c < m.num_cells(); ++c)
+      if (inside(m.cell_centroid(c), r.lower, r.upper, box.dim)) {
+        cells.push_back(c);
+        m.cell_region[static_cast<std::size_t>(c)] = r.id;
+      }
+    if (cells.empty())
+      throw InputError(
+          fmt::format("{}: region '{}' contains no cell centroid; enlarge its box or refine the mesh",
+                      r.where.describe(), r.name));
+    m.cell_sets[r.name] = std::move(cells);
+  }
+  for (const auto& c : config.mesh.cuts) {
+    try {
+      mesh::split_along_cut(m, Cut{box.dim, c.origin, c.edge1, c.edge2});
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: {}", c.where.describe(), e.what()));
+    }
+  }
+  // After the cuts, so that both copies of a split node are selected.
+  if (!config.node_sets.empty()) {
+    const auto [lo, hi] = m.bounding_box();
+    double extent = 0.0;
+    for (int d = 0; d < box.dim; ++d) extent = std::max(extent, hi[d] - lo[d]);
+    const double tol = 1e-9 * extent;
+    for (const auto& s : config.node_sets) add_node_set(m, s, tol);
+  }
+  return m;
+}
+
+Voigt6 material_stiffness(const casefile::MaterialSpec& m) {
+  std::string problem;
+  Voigt6 C;
+  if (m.kind == casefile::MaterialKind::isotropic) {
+    const fem::IsotropicElasticity iso{m.E, m.nu};
+    problem = fem::admissibility_problem(iso);
+    C = fem::stiffness_voigt(iso);
+  } else {
+    const fem::OrthotropicElasticity ortho{m.E1,   m.E2,  m.E3,  m.nu12, m.nu13,
+                                           m.nu23, m.G12, m.G13, m.G23,  m.axes};
+    problem = fem::admissibility_problem(ortho);
+    C = fem::stiffness_voigt(ortho);
+  }
+  if (!problem.empty())
+    throw InputError(fmt::format("{}: material '{}': {}", m.where.describe(), m.name, problem));
+  return C;
+}
+
+Discretization build_discretization(const casefile::CaseConfig& config, const PhaseCallback& on_phase) {
+  auto phase = [&](const char* name) {
+    if (on_phase) on_phase(name);
+  };
+  phase("mesh");
+  mesh::Mesh m = build_mesh(config);
+  const int dim = m.dim();
+  const double scale = dim == 3 ? 1.0 : config.model.thickness;
+  auto rule = fem::gauss_legendre(dim, config.model.local_quadrature);
+  fem::ConstitutiveField field(dim, m.num_cells(), static_cast<int>(rule.size()));
+  std::vector<dofs::Continuity> continuity;
+
+  std::optional<NonlocalModel> nl;
+  phase("material");
+  if (config.nonlocal.enabled) {
+    nl.emplace();
+    nl->material = nonlocal_material(config);
+    nl->kernel = make_kernel(config.nonlocal);
+    nl->calibration = calibrate_kernel(nl->kernel, nl->material, dim, config.model.plane);
+    const Eigen::MatrixXd& C0 = nl->material.C0;
+    const bool partial_volume = config.nonlocal.horizon_edge == casefile::HorizonEdge::partial_volume;
+    if (config.nonlocal.calibration == casefile::CalibrationRule::discrete) {
+      if (!m.structure)
+        throw InputError(fmt::format("{}: calibration = \"discrete\" needs a structured box mesh",
+                                     config.nonlocal.where.describe()));
+      nl->kernel.scale = nl->calibration.scale;
+      nl->discrete_factor = assembly::discrete_calibration_factor(
+          *m.structure, dim, config.nonlocal.quadrature, nl->kernel, C0, partial_volume);
+      nl->calibration.scale *= nl->discrete_factor;
+      nl->calibration.gc_factor *= nl->discrete_factor;
+    }
+    nl->kernel.scale = nl->calibration.scale / scale;  // bond weights W = t² w w carry t twice
+    phase("points");
+    nl->alpha = make_alpha_field(config);
+    nl->points = bonds::make_nonlocal_points(m, config.nonlocal.quadrature, scale, nl->alpha, partial_volume);
+    check_alpha_regions(config, nl->alpha, nl->points, m, rule);
+    phase("bond graph");
+    const auto& amax = nl->points.cell_alpha_max;
+    // Boxes of the local and non-local points: the graph must hold every cell
+    // the bonds of a non-local point or the horizon integral of a local point
+    // (the morphed C) can reach.
+    std::vector<Vec3> reference;
+    for (const auto& q : fem::gauss_legendre(dim, config.nonlocal.quadrature)) reference.push_back(q.xi);
+    for (const auto& q : rule) reference.push_back(q.xi);
+    nl->graph = bonds::find_cell_neighbors(m, bonds::point_boxes(m, reference),
+                                           nl->points.bond_reach(nl->kernel.horizon), [&](Index e, Index f) {
+                                             return amax[static_cast<std::size_t>(e)] > 0.0 ||
+                                                    amax[static_cast<std::size_t>(f)] > 0.0;
+                                           });
+    phase("morphed stiffness");
+    nl->morph = assembly::morph_stiffness(m, rule, nl->points, nl->graph, nl->kernel, nl->alpha, C0,
+                                          config.nonlocal.coupling == casefile::Coupling::partition
+                                              ? assembly::CouplingRule::partition
+                                              : assembly::CouplingRule::morphing,
+                                          field);
+    const auto dg = config.nonlocal.discretization;
+    if (dg != casefile::Discretization::continuous) {
+      const auto flag = dg == casefile::Discretization::discontinuous
+                            ? dofs::Continuity::discontinuous
+                            : dofs::Continuity::discontinuous_constant;
+      continuity.assign(static_cast<std::size_t>(m.num_cells()), dofs::Continuity::continuous);
+      for (Index c = 0; c < m.num_cells(); ++c)
+        if (nl->morph.purely_nonlocal[static_cast<std::size_t>(c)])
+          continuity[static_cast<std::size_t>(c)] = flag;
+    }
+  } else {
+    std::vector<int> assigned(static_cast<std::size_t>(m.num_cells()), -1);
+    for (const auto& mat : config.materials) {
+      const int id =
+          field.add_tensor(fem::reduce_stiffness(material_stiffness(mat), dim, config.model.plane));
+      for (Index c : m.cell_sets.at(mat.region)) {
+        field.set_cell(c, id);
+        assigned[static_cast<std::size_t>(c)] = id;
+      }
+    }
+    for (Index c = 0; c < m.num_cells(); ++c)
+      if (assigned[static_cast<std::size_t>(c)] < 0)
+        throw InputError(fmt::format(
+            "{}: cell {} (centroid {:.4g}, {:.4g}, {:.4g}) has no material; give a material "
+            "with region = \"all\" or cover every region",
+            config.path, c, m.cell_centroid(c).x(), m.cell_centroid(c).y(), m.cell_centroid(c).z()));
+  }
+  phase("dof map");
+  dofs::DofMap dofmap(m, dim, continuity);
+  return Discretization{config,           std::move(m), std::move(dofmap), std::move(rule),
+                        std::move(field), scale,        std::move(nl)};
+}
+
+}  // namespace perimorph::setup

@@ -1,0 +1,57 @@
+#pragma once
+// The discretized problem built from a case file: mesh (with regions and
+// pre-crack cuts), dof map, quadrature and the local stiffness at every
+// quadrature point. This is where typed case data meets the pipeline stages.
+
+#include "perimorph/assembly/local_assembly.hpp"
+#include "perimorph/casefile/case_config.hpp"
+#include "perimorph/dofs/dof_map.hpp"
+#include "perimorph/fem/constitutive_field.hpp"
+#include "perimorph/fem/material.hpp"
+#include "perimorph/mesh/mesh.hpp"
+#include "perimorph/setup/nonlocal_setup.hpp"
+
+#include <functional>
+#include <optional>
+#include <string>
+
+namespace perimorph::setup {
+
+struct Discretization {
+  casefile::CaseConfig config;
+  mesh::Mesh mesh;
+  dofs::DofMap dofmap;
+  std::vector<fem::QuadraturePoint> rule;
+  fem::ConstitutiveField stiffness;
+  double scale = 1.0;  ///< thickness (2D) or cross-section (1D)
+  /// The non-local part, when the case has a [nonlocal] section.
+  std::optional<NonlocalModel> nonlocal;
+
+  int dim() const { return mesh.dim(); }
+  assembly::LocalSpace local_space() const { return {mesh, dofmap, rule, scale}; }
+  /// True if cell c carries local stiffness (not purely non-local).
+  bool has_local_stiffness(Index c) const {
+    return !nonlocal || !nonlocal->morph.purely_nonlocal[static_cast<std::size_t>(c)];
+  }
+};
+
+/// The mesh of a case: box, regions (cell sets and region ids), cuts, then
+/// [[node_set]] node sets (so both copies of a split node are selected);
+/// throws InputError for a cut off the element faces, an empty region or a
+/// node set that selects no node.
+mesh::Mesh build_mesh(const casefile::CaseConfig& config);
+
+/// 3D stiffness (Voigt 6×6) of a case material, checked for admissibility.
+Voigt6 material_stiffness(const casefile::MaterialSpec& m);
+
+/// Called with the name of each set-up phase as it begins ("mesh", "bond
+/// graph", ...), for a progress display.
+using PhaseCallback = std::function<void(const std::string& phase)>;
+
+/// Builds everything; throws InputError naming the case-file key for problems
+/// found only now (a cut off the element faces, an inadmissible material, a
+/// cell left without material, an [[alpha.region]] that reaches no
+/// quadrature point). `on_phase`, if given, hears each phase begin.
+Discretization build_discretization(const casefile::CaseConfig& config, const PhaseCallback& on_phase = {});
+
+}  // namespace perimorph::setup

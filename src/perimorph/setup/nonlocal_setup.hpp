@@ -1,0 +1,44 @@
+#pragma once
+// Setting up the non-local part of a case (THEORY §1–§4): the calibrated
+// micromodulus, the α field, the non-local quadrature points, the cell graph
+// and the morphed local stiffness. Case data in, pipeline objects out.
+
+#include "perimorph/alpha/alpha_field.hpp"
+#include "perimorph/assembly/morphed_stiffness.hpp"
+#include "perimorph/bonds/cell_graph.hpp"
+#include "perimorph/bonds/nonlocal_points.hpp"
+#include "perimorph/casefile/case_config.hpp"
+#include "perimorph/peridynamics/micromodulus.hpp"
+#include "perimorph/setup/nonlocal_material.hpp"
+
+#include <span>
+
+namespace perimorph::setup {
+
+struct NonlocalModel {
+  NonlocalMaterial material;  ///< the material, resolved for central forces
+  peridynamics::Micromodulus kernel;
+  peridynamics::Calibration calibration;  ///< scale includes discrete_factor
+  double discrete_factor = 1.0;           ///< discrete calibration factor (1: continuum calibration)
+  alpha::AlphaField alpha = alpha::AlphaField::constant(0.0);
+  bonds::NonlocalPoints points;
+  bonds::CellGraph graph;
+  assembly::MorphedStiffness morph;
+};
+
+/// The α field of a case (α ≡ 0 when [alpha] is absent).
+alpha::AlphaField make_alpha_field(const casefile::CaseConfig& config);
+
+/// Throws InputError, naming the entry's file and line, its shape and the
+/// mesh's extent, for an [[alpha.region]] of `alpha` (made by make_alpha_field)
+/// that gives α > 0 at none of the points α is read at: the non-local points
+/// and the local quadrature points of `rule` in every cell. Such a region
+/// would change nothing.
+void check_alpha_regions(const casefile::CaseConfig& config, const alpha::AlphaField& alpha,
+                         const bonds::NonlocalPoints& points, const mesh::Mesh& mesh,
+                         std::span<const fem::QuadraturePoint> rule);
+
+/// The micromodulus of a case (shape, δ, l; scale not yet calibrated).
+peridynamics::Micromodulus make_kernel(const casefile::NonlocalSpec& spec);
+
+}  // namespace perimorph::setup

@@ -1,0 +1,81 @@
+#pragma once
+// The linear system of a run (THEORY §4–5): K, unconstrained (reactions,
+// energies and work read it); A, K with the prescribed dofs eliminated
+// (symmetric positive definite); rhs_unit, the right-hand side at load factor
+// 1 (the applied forces, and the prescribed values moved over); the Dirichlet
+// data; and the solver on A. The load enters linearly: the system at load
+// factor λ is A u = λ rhs_unit. Bond failure changes it in place through
+// downdate and hold (BondFailure::apply), then calls operator_changed().
+
+#include "perimorph/la/linear_solver.hpp"
+#include "perimorph/la/matrix.hpp"
+#include "perimorph/la/vector.hpp"
+#include "perimorph/setup/boundary_conditions.hpp"
+#include "perimorph/setup/discretization.hpp"
+
+#include <cmath>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace perimorph::system {
+
+class ConstrainedSystem {
+ public:
+  /// Constrains `K` (assembled, finalized) by `bc`, with the external force
+  /// `F` at load factor 1. No solver yet (attach_solver).
+  ConstrainedSystem(const setup::Discretization& model, la::Matrix K, setup::DirichletData bc,
+                    std::span<const double> F);
+
+  /// The case's solver ([solver] rtol, max_iterations; PETSc options from the
+  /// options database) on A, with the rigid-body near-null space of the nodes.
+  void attach_solver();
+  /// Solves A u = λ rhs_unit (u: the initial guess in, the solution out).
+  /// Throws SolverError (la::LinearSolver). Requires attach_solver.
+  la::SolveReport solve(double lambda, la::Vector& u);
+  /// A has changed (a downdate or held dofs): the solver takes it again.
+  void operator_changed();
+
+  /// Subtracts a bond's block (m × m, row-major, over `dofs`) from K, and from
+  /// A on its free rows and columns; the block's prescribed columns move to
+  /// the right-hand side, rhs_unit[i] += B_ij g_j (free i, prescribed j, g the
+  /// prescribed values at load factor 1). Call finish_downdate after the last.
+  void downdate(std::span<const Index> dofs, std::span<const double> block);
+  /// Finalizes K and A after downdates; returns the free dofs they touched
+  /// (sorted, unique).
+  std::vector<Index> finish_downdate();
+  /// Of `dofs`, those whose diagonal of A has fallen to round-off (1e-12) of
+  /// its value before any downdate: dofs left with no stiffness.
+  std::vector<Index> without_stiffness(std::span<const Index> dofs) const;
+  /// Holds each dof by a spring of its stiffness before any downdate on A's
+  /// diagonal (K unchanged: the spring carries no force); with `zero_rhs` the
+  /// right-hand side there is set to 0. A is finalized.
+  void hold(std::span<const Index> dofs, bool zero_rhs);
+  /// True if the dof is prescribed.
+  bool prescribed(Index dof) const { return !std::isnan(prescribed_[static_cast<std::size_t>(dof)]); }
+
+  la::Matrix& K() { return K_; }
+  const la::Matrix& K() const { return K_; }
+  la::Matrix& A() { return A_; }
+  const la::Matrix& A() const { return A_; }
+  la::Vector& rhs_unit() { return rhs_unit_; }
+  const la::Vector& rhs_unit() const { return rhs_unit_; }
+  const setup::DirichletData& bc() const { return bc_; }
+  /// The external force at load factor 1 (before the constraints).
+  const std::vector<double>& applied_force() const { return applied_force_; }
+
+ private:
+  const setup::Discretization& model_;
+  la::Matrix K_, A_;
+  setup::DirichletData bc_;
+  std::vector<double> applied_force_;
+  la::Vector rhs_unit_, rhs_;
+  std::unique_ptr<la::LinearSolver> solver_;
+  std::vector<double> prescribed_;        ///< value at load factor 1; NaN on free dofs
+  std::vector<double> initial_diagonal_;  ///< of A, before any downdate
+  // Collected by downdate, applied by finish_downdate.
+  std::vector<Index> touched_, rhs_at_, free_dofs_;
+  std::vector<double> rhs_add_, negative_;
+};
+
+}  // namespace perimorph::system

@@ -1,0 +1,32 @@
+#include "perimorph/system/stiffness.hpp"
+
+#include "perimorph/assembly/sparsity.hpp"
+
+#include <chrono>
+
+namespace perimorph::system {
+
+AssembledStiffness assemble_stiffness(const setup::Discretization& model, const bonds::BrokenBonds* broken) {
+  using clock = std::chrono::steady_clock;
+  auto seconds = [](clock::time_point a) { return std::chrono::duration<double>(clock::now() - a).count(); };
+  auto t0 = clock::now();
+  const bonds::CellGraph* graph = model.nonlocal ? &model.nonlocal->graph : nullptr;
+  AssembledStiffness out{la::Matrix(assembly::build_sparsity(model.dofmap, graph)), {}, 0.0, 0.0, 0.0};
+  out.setup_seconds = seconds(t0);
+  t0 = clock::now();
+  assembly::assemble_elasticity(model.local_space(), model.stiffness, out.K,
+                                [&](Index c) { return model.has_local_stiffness(c); });
+  out.local_seconds = seconds(t0);
+  if (model.nonlocal) {
+    t0 = clock::now();
+    const auto& nl = *model.nonlocal;
+    assembly::NonlocalSpace space{model.mesh, model.dofmap, nl.points, nl.graph, nl.kernel};
+    space.broken = broken;
+    out.nonlocal = assembly::assemble_nonlocal(space, out.K);
+    out.nonlocal_seconds = seconds(t0);
+  }
+  out.K.finalize();
+  return out;
+}
+
+}  // namespace perimorph::system

@@ -1,0 +1,21 @@
+#pragma once
+// The hybrid stiffness K = K_local(C(x)) + K_nl of a model (THEORY §4),
+// assembled into a PETSc matrix with exact preallocation.
+
+#include "perimorph/assembly/nonlocal_assembly.hpp"
+#include "perimorph/la/matrix.hpp"
+#include "perimorph/setup/discretization.hpp"
+
+namespace perimorph::system {
+
+struct AssembledStiffness {
+  la::Matrix K;
+  assembly::NonlocalStats nonlocal;  ///< zero for a purely local model
+  double local_seconds = 0.0, nonlocal_seconds = 0.0, setup_seconds = 0.0;
+};
+
+/// Assembles K (unconstrained, finalized), failed bonds (if given) left out.
+AssembledStiffness assemble_stiffness(const setup::Discretization& model,
+                                      const bonds::BrokenBonds* broken = nullptr);
+
+}  // namespace perimorph::system

@@ -1,0 +1,188 @@
+// Parts cut free by bond failure (floating_parts.hpp): a plate cut through
+// by failed bonds leaves its right half held only along x; the failure update
+// finds that part, holds its free mode by a minimal support, the matrix stays
+// non-singular and the support carries no force (the half moves rigidly with
+// its pulled edge). A cut-free part with an unbalanced applied force is an
+// error, and so is a force on a node that failures left without stiffness. A
+// mechanism the search cannot hold ends the run with a solver error that says
+// bonds have failed.
+
+#include "perimorph/assembly/bond_stretch.hpp"
+#include "perimorph/core/error.hpp"
+#include "perimorph/evolution/bond_failure.hpp"
+#include "perimorph/run/static_run.hpp"
+#include "perimorph/setup/boundary_conditions.hpp"
+#include "perimorph/setup/discretization.hpp"
+#include "perimorph/system/stiffness.hpp"
+#include "support/cases.hpp"
+
+#include <gtest/gtest.h>
+#include <Eigen/Dense>
+
+#include <filesystem>
+
+namespace perimorph {
+namespace {
+
+using testing::fixed;
+
+/// Plate [0, 4] × [0, 2], fully non-local (DG), u_x = 0 on x = 0 and u_y = 0
+/// at the origin; the right edge pulled to u_x = 0.004, or (traction) loaded
+/// by a traction along x.
+casefile::CaseConfig plate(bool traction) {
+  auto c = testing::box_case(2, {16, 8, 1}, Vec3(4.0, 2.0, 1.0), 1.0, 0.25);
+  testing::add_nonlocal(c, casefile::KernelKind::gaussian, 0.375, 0.125, 2,
+                        casefile::Discretization::discontinuous);
+  c.alpha.value = 1.0;
+  c.materials[0].nu = std::numeric_limits<double>::quiet_NaN();
+  casefile::NodeSetSpec origin;
+  origin.name = "origin";
+  c.node_sets = {origin};
+  c.dirichlet = {fixed("xmin", 0), fixed("origin", 1)};
+  if (traction) {
+    casefile::TractionSpec t;
+    t.set = "xmax";
+    t.value = Vec3(1e-3, 0.0, 0.0);
+    c.tractions = {t};
+  } else {
+    c.dirichlet.push_back(fixed("xmax", 0, 0.004));
+  }
+  c.fracture.enabled = true;
+  c.fracture.s_crit = 1e-6;
+  return c;
+}
+
+/// Cells right of x = 2 moved by (1, 0): only the bonds across x = 2 stretch.
+std::vector<double> jump_at_middle(const setup::Discretization& model) {
+  const auto& dm = model.dofmap;
+  std::vector<double> u(static_cast<std::size_t>(dm.num_dofs()), 0.0);
+  for (Index c = 0; c < model.mesh.num_cells(); ++c) {
+    const auto nodes = dm.cell_nodes(c);
+    Vec3 centre = Vec3::Zero();
+    for (Index a : nodes) centre += dm.node_coordinate(a);
+    if (centre.x() / static_cast<double>(nodes.size()) > 2.0)
+      for (Index a : nodes) u[static_cast<std::size_t>(a * 2)] = 1.0;
+  }
+  return u;
+}
+
+/// The run's constrained system of a model at load factor 1 (applied forces,
+/// prescribed values).
+system::ConstrainedSystem constrained_system(const setup::Discretization& model) {
+  return system::ConstrainedSystem(model, system::assemble_stiffness(model).K, setup::build_dirichlet(model),
+                                   setup::build_external_force(model));
+}
+
+/// Assembles, constrains and fails every bond across x = 2.
+system::ConstrainedSystem cut_plate(const setup::Discretization& model, evolution::BondFailure& failure) {
+  system::ConstrainedSystem out = constrained_system(model);
+  const auto bonds = failure.select(jump_at_middle(model));
+  EXPECT_GT(bonds.size(), 100u);
+  failure.apply(bonds, out);
+  return out;
+}
+
+TEST(FloatingParts, CutFreeHalfIsHeldWithoutForce) {
+  const auto model = setup::build_discretization(plate(false));
+  evolution::BondFailure failure(model);
+  system::ConstrainedSystem cut = cut_plate(model, failure);
+  // Every bond across x = 2 failed: no cell pair across it keeps one.
+  const auto sp = failure.space();
+  for (const auto& [e, f] : assembly::bonded_pairs(sp)) {
+    const auto ce = model.mesh.cell_centroid(e), cf = model.mesh.cell_centroid(f);
+    EXPECT_FALSE((ce.x() < 2.0) != (cf.x() < 2.0)) << "cells " << e << ", " << f << " still bonded";
+  }
+  // The right half is held along x only (its pulled edge): one part, free in y.
+  EXPECT_EQ(failure.floating_parts(), 1u);
+  const Eigen::MatrixXd A = cut.A().to_dense();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A, Eigen::EigenvaluesOnly);
+  const double ratio = eig.eigenvalues().minCoeff() / eig.eigenvalues().maxCoeff();
+  std::printf("cut plate: %zu floating part(s), eigenvalue ratio of A %.3e\n", failure.floating_parts(),
+              ratio);
+  EXPECT_GT(ratio, 1e-12);
+  // Solution: the left half at rest, the right half moved rigidly by 0.004
+  // along x. A support with a force on it would bend or shift the half.
+  const std::vector<double> rhs = cut.rhs_unit().to_std();
+  const Eigen::VectorXd u = A.ldlt().solve(Eigen::Map<const Eigen::VectorXd>(rhs.data(), A.rows()));
+  const auto& dm = model.dofmap;
+  double err = 0.0;
+  for (Index c = 0; c < model.mesh.num_cells(); ++c) {
+    const double ux = model.mesh.cell_centroid(c).x() > 2.0 ? 0.004 : 0.0;
+    for (Index a : dm.cell_nodes(c)) {
+      err = std::max(err, std::abs(u[a * 2] - ux));
+      err = std::max(err, std::abs(u[a * 2 + 1]));
+    }
+  }
+  std::printf("largest deviation from the rigid motions: %.3e (of 0.004)\n", err);
+  EXPECT_LT(err, 1e-10 * 0.004);
+}
+
+TEST(FloatingParts, UnbalancedCutFreePartIsAnError) {
+  const auto model = setup::build_discretization(plate(true));
+  evolution::BondFailure failure(model);
+  try {
+    cut_plate(model, failure);
+    FAIL() << "a part cut free with a traction on it was accepted";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("no quasi-static equilibrium"), std::string::npos) << what;
+    EXPECT_NE(what.find("(2, 0, 0) and (4, 2, 0)"), std::string::npos) << what;
+  }
+}
+
+// Every bond of the last column of cells with a horizontal component fails
+// (u_x = (x − 3.75)² there): its nodes keep no stiffness along x while the
+// traction pulls them along x. That is an error, not a dropped force.
+TEST(FloatingParts, ForceOnANodeLeftWithoutStiffnessIsAnError) {
+  auto c = plate(true);
+  c.fracture.s_crit = 1e-12;
+  const auto model = setup::build_discretization(c);
+  evolution::BondFailure failure(model);
+  system::ConstrainedSystem sys = constrained_system(model);
+  std::vector<double> u(static_cast<std::size_t>(model.dofmap.num_dofs()), 0.0);
+  for (Index cell = 0; cell < model.mesh.num_cells(); ++cell)
+    if (model.mesh.cell_centroid(cell).x() > 3.75)
+      for (Index a : model.dofmap.cell_nodes(cell)) {
+        const double d = model.dofmap.node_coordinate(a).x() - 3.75;
+        u[static_cast<std::size_t>(a * 2)] = d * d;
+      }
+  const auto bonds = failure.select(u);
+  ASSERT_GT(bonds.size(), 50u);
+  try {
+    failure.apply(bonds, sys);
+    FAIL() << "a node left without stiffness under a force was accepted";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    std::printf("%s\n", what.c_str());
+    EXPECT_NE(what.find("with no stiffness in direction x"), std::string::npos) << what;
+    EXPECT_NE(what.find("no quasi-static equilibrium"), std::string::npos) << what;
+  }
+}
+
+// Pulled by a traction far beyond failure, the plate falls apart into a
+// mechanism the part search cannot hold (bonds left only across the load).
+// The solver's failure then says that bonds have failed and what was kept.
+TEST(FloatingParts, SolverFailureAfterFailuresSaysSo) {
+  auto c = plate(true);
+  c.loading.factors = {0.25, 3.0};  // mean strain 2.5e-4, then 3e-3 > s_crit in most bonds
+  c.fracture.s_crit = 1e-3;
+  c.solver.petsc_options = "-ksp_type preonly -pc_type cholesky";
+  const auto model = setup::build_discretization(c);
+  run::RunOptions options;
+  options.output_directory = (std::filesystem::temp_directory_path() / "perimorph_floating_plate").string();
+  options.quiet = true;
+  std::filesystem::remove_all(options.output_directory);
+  try {
+    run::run_static(model, options);
+    FAIL() << "the plate fell apart under a force and the run went on";
+  } catch (const SolverError& e) {
+    const std::string what = e.what();
+    std::printf("%s\n", what.c_str());
+    EXPECT_NE(what.find("increment 2/2"), std::string::npos) << what;
+    EXPECT_NE(what.find("bonds have failed: they can leave a mechanism"), std::string::npos) << what;
+    EXPECT_NE(what.find("Results of increments 1..1"), std::string::npos) << what;
+  }
+}
+
+}  // namespace
+}  // namespace perimorph
