@@ -48,7 +48,7 @@ void LinearSolver::set_operator(Matrix& A, std::span<const Vec3> node_coordinate
 
 SolveReport LinearSolver::solve(const Vector& b, Vector& x) {
   PERIMORPH_ASSERT(A_ != nullptr, "set_operator must be called before solve");
-  PM_PETSC(KSPSolve(ksp_, b.handle(), x.handle()));
+  PM_PETSC(KSPSolve(ksp_, b.read_handle(), x.handle()));
   SolveReport report;
   KSPConvergedReason reason;
   PM_PETSC(KSPGetConvergedReason(ksp_, &reason));

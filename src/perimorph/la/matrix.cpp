@@ -189,12 +189,12 @@ Matrix Matrix::duplicate() const {
 
 void Matrix::mult(const Vector& x, Vector& y) const {
   release_view();
-  PM_PETSC(MatMult(m_, x.handle(), y.handle()));
+  PM_PETSC(MatMult(m_, x.read_handle(), y.handle()));
 }
 
 void Matrix::eliminate_dirichlet(std::span<const Index> rows, const Vector& x, Vector& rhs, double diagonal) {
   release_view();
-  PM_PETSC(MatZeroRowsColumns(m_, static_cast<PetscInt>(rows.size()), rows.data(), diagonal, x.handle(),
+  PM_PETSC(MatZeroRowsColumns(m_, static_cast<PetscInt>(rows.size()), rows.data(), diagonal, x.read_handle(),
                               rhs.handle()));
 }
 

@@ -59,7 +59,15 @@ class Matrix final : public assembly::MatrixInserter {
   /// Marks the matrix symmetric positive definite (after finalize).
   void set_spd();
 
-  PetscMatHandle handle() const {
+  /// The PETSc matrix, for PETSc calls that may change it (la/ only).
+  PetscMatHandle handle() {
+    release_view();
+    return m_;
+  }
+  /// The PETSc matrix for read-only PETSc calls (PETSc takes Mat, not a
+  /// const type, even where it only reads): nothing may change it through
+  /// this handle.
+  PetscMatHandle read_handle() const {
     release_view();
     return m_;
   }

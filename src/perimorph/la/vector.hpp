@@ -37,7 +37,12 @@ class Vector {
   void copy_from(const Vector& other);
   bool all_finite() const;
 
-  PetscVecHandle handle() const { return v_; }
+  /// The PETSc vector, for PETSc calls that may change it (la/ only).
+  PetscVecHandle handle() { return v_; }
+  /// The PETSc vector for read-only PETSc calls (PETSc takes Vec, not a
+  /// const type, even where it only reads): nothing may change it through
+  /// this handle.
+  PetscVecHandle read_handle() const { return v_; }
 
  private:
   PetscVecHandle v_ = nullptr;
