@@ -22,13 +22,13 @@
 //   Select/nx/k           BondFailure::select(u) with s_crit between the k-th
 //                         and (k+1)-th largest stretch: a pass over every bond
 //   Apply/nx/k            BondFailure::apply of the k most stretched bonds to
-//                         fresh copies of K, A and the right-hand side (copies
-//                         and a first apply of no bond, which records A's
-//                         initial diagonal as a run's first iteration does,
-//                         are made outside the timed region)
+//                         fresh copies of K, A and the right-hand side, then
+//                         PartSupport's inspect and apply (detached dofs,
+//                         parts cut free), as one pass of the run's
+//                         components (copies made outside the timed region)
 //   Solve/nx              after applying the 100 most stretched bonds:
 //                         set_operator(A) and one solve warm-started from u,
-//                         as the loop in static_run.cpp does (includes the GAMG
+//                         as the run does (run/quasi_static_run.cpp) (includes the GAMG
 //                         set-up); then the same solve again without
 //                         set_operator (preconditioner reused), counter
 //                         solve_only_s
@@ -37,7 +37,7 @@
 //                         the 100 most stretched bonds failed
 //   FloatingParts/nx       evolution::find_floating_parts (the connected parts of
 //                         the stiffness graph and their free rigid-body
-//                         modes), which apply() runs when a cell pair has lost
+//                         modes), which PartSupport runs when a cell pair has lost
 //                         its last intact bond; same state
 //
 // Times: manual (steady_clock around the timed call), in ms. Each benchmark
@@ -60,6 +60,7 @@
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/evolution/floating_parts.hpp"
+#include "perimorph/evolution/part_support.hpp"
 #include "perimorph/la/linear_solver.hpp"
 #include "perimorph/la/matrix.hpp"
 #include "perimorph/la/petsc_session.hpp"
@@ -188,7 +189,8 @@ struct Setup {
     u = x.to_std();
 
     const evolution::BondFailure failure(model);
-    auto all = assembly::bonds_over(failure.space(), u, 0.0);
+    const evolution::RunState intact_state(model);
+    auto all = assembly::bonds_over(failure.space(intact_state), u, 0.0);
     tension = all.size();
     std::vector<std::size_t> order(all.size());
     std::iota(order.begin(), order.end(), std::size_t{0});
@@ -236,17 +238,28 @@ Setup& setup_for(int nx) {
 }
 
 /// A fresh constrained system (K, A and the right-hand side of the intact
-/// model, as the run builds them), and a BondFailure that has recorded A's
-/// initial diagonal (a first apply of no bond).
+/// model, as the run builds them), a run state with nothing failed, and the
+/// run's two fracture components.
 struct Copies {
   system::ConstrainedSystem sys;
+  evolution::RunState state;
   evolution::BondFailure failure;
+  evolution::PartSupport support;
 
   explicit Copies(Setup& s)
       : sys(s.model, s.intact.K.duplicate(), s.bc,
             std::vector<double>(static_cast<std::size_t>(s.dofs()), 0.0)),
-        failure(s.model) {
-    failure.apply({}, sys);
+        state(s.model),
+        failure(s.model),
+        support(s.model) {}
+
+  /// What the run does with bonds over the criterion: bond failure's apply
+  /// (downdates), then the support's inspect and apply (detached dofs, parts
+  /// cut free).
+  evolution::FailureEnergy apply(const std::vector<assembly::StretchedBond>& bonds) {
+    const auto e = failure.apply(bonds, state, sys);
+    if (!support.inspect(state, sys).quiet()) support.apply(state, sys);
+    return e;
   }
 };
 
@@ -302,10 +315,12 @@ void BM_Select(benchmark::State& state) {
   const auto k = static_cast<std::size_t>(state.range(1));
   s.model.config.fracture.s_crit = s.threshold(k);
   const evolution::BondFailure failure(s.model);
+  evolution::RunState at_u(s.model);
+  at_u.u = s.u;
   double selected = 0, total = 0;
   for (auto _ : state) {
     const auto t0 = Clock::now();
-    const auto bonds = failure.select(s.u);
+    const auto bonds = failure.select(at_u);
     const double t = seconds_since(t0);
     state.SetIterationTime(t);
     total += t;
@@ -326,14 +341,14 @@ void BM_Apply(benchmark::State& state) {
   for (auto _ : state) {
     Copies c(s);
     const auto t0 = Clock::now();
-    const auto e = c.failure.apply(bonds, c.sys);
+    const auto e = c.apply(bonds);
     energy += e.dissipated + e.overshoot;
     const double t = seconds_since(t0);
     state.SetIterationTime(t);
     total += t;
-    broken += static_cast<double>(c.failure.broken().size());
-    if (c.failure.detached_dofs() > 0)  // not a counter: always 0 here, its cv would be NaN in the JSON
-      std::fprintf(stderr, "Apply nx=%d k=%zu: %zu detached dofs\n", s.nx, k, c.failure.detached_dofs());
+    broken += static_cast<double>(c.state.failed.size());
+    if (c.state.detached_dofs > 0)  // not a counter: always 0 here, its cv would be NaN in the JSON
+      std::fprintf(stderr, "Apply nx=%d k=%zu: %zu detached dofs\n", s.nx, k, c.state.detached_dofs);
   }
   common_counters(state, s);
   state.counters["k"] = static_cast<double>(k);
@@ -348,7 +363,7 @@ void BM_Solve(benchmark::State& state) {
   double its = 0, again = 0, its_again = 0, residual = 0;
   for (auto _ : state) {
     Copies c(s);
-    c.failure.apply(bonds, c.sys);
+    c.apply(bonds);
     la::LinearSolver solver(s.model.config.solver.rtol, s.model.config.solver.max_iterations);
     la::Vector x(s.dofs(), kDim);
     x.assign(s.u);
@@ -378,19 +393,19 @@ template <Pass kPass>
 void BM_Output(benchmark::State& state) {
   Setup& s = setup_for(static_cast<int>(state.range(0)));
   Copies c(s);
-  c.failure.apply(s.most_stretched(kStateK), c.sys);
+  c.apply(s.most_stretched(kStateK));
   double check = 0;
   for (auto _ : state) {
     const auto t0 = Clock::now();
     if constexpr (kPass == Pass::fields) {
-      const auto f = c.failure.fields();
+      const auto f = c.failure.fields(c.state);
       benchmark::DoNotOptimize(f.damage.data());
       check += *std::max_element(f.damage.begin(), f.damage.end());
     } else if constexpr (kPass == Pass::crack_area) {
-      const auto area = c.failure.crack_area();
+      const auto area = c.failure.crack_area(c.state);
       benchmark::DoNotOptimize(area);
     } else {
-      const auto parts = evolution::find_floating_parts(s.model, c.failure.space(), s.bc.dofs, {});
+      const auto parts = evolution::find_floating_parts(s.model, c.failure.space(c.state), s.bc.dofs, {});
       benchmark::DoNotOptimize(parts.pins.data());
       check += parts.parts;
     }

@@ -10,6 +10,7 @@
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/evolution/bond_failure.hpp"
+#include "perimorph/evolution/part_support.hpp"
 #include "perimorph/run/static_run.hpp"
 #include "perimorph/setup/boundary_conditions.hpp"
 #include "perimorph/setup/discretization.hpp"
@@ -73,32 +74,47 @@ system::ConstrainedSystem constrained_system(const setup::Discretization& model)
                                    setup::build_external_force(model));
 }
 
+/// One pass of the run's components at the state's displacement, as the run
+/// loop makes it: bond failure inspects and applies, then the support of
+/// parts cut free. Returns the number of bonds failed.
+std::size_t break_and_support(const setup::Discretization& model, evolution::RunState& state,
+                              system::ConstrainedSystem& sys) {
+  evolution::BondFailure failure(model);
+  evolution::PartSupport support(model);
+  const std::size_t bonds = failure.inspect(state, sys).changes;
+  if (bonds > 0) {
+    EXPECT_EQ(failure.apply(state, sys), evolution::Effect::downdate);
+  }
+  if (!support.inspect(state, sys).quiet()) {
+    EXPECT_EQ(support.apply(state, sys), evolution::Effect::hold);
+  }
+  return bonds;
+}
+
 /// Assembles, constrains and fails every bond across x = 2.
-system::ConstrainedSystem cut_plate(const setup::Discretization& model, evolution::BondFailure& failure) {
+system::ConstrainedSystem cut_plate(const setup::Discretization& model, evolution::RunState& state) {
   system::ConstrainedSystem out = constrained_system(model);
-  const auto bonds = failure.select(jump_at_middle(model));
-  EXPECT_GT(bonds.size(), 100u);
-  failure.apply(bonds, out);
+  state.u = jump_at_middle(model);
+  EXPECT_GT(break_and_support(model, state, out), 100u);
   return out;
 }
 
 TEST(FloatingParts, CutFreeHalfIsHeldWithoutForce) {
   const auto model = setup::build_discretization(plate(false));
-  evolution::BondFailure failure(model);
-  system::ConstrainedSystem cut = cut_plate(model, failure);
+  evolution::RunState state(model);
+  system::ConstrainedSystem cut = cut_plate(model, state);
   // Every bond across x = 2 failed: no cell pair across it keeps one.
-  const auto sp = failure.space();
+  const auto sp = evolution::BondFailure(model).space(state);
   for (const auto& [e, f] : assembly::bonded_pairs(sp)) {
     const auto ce = model.mesh.cell_centroid(e), cf = model.mesh.cell_centroid(f);
     EXPECT_FALSE((ce.x() < 2.0) != (cf.x() < 2.0)) << "cells " << e << ", " << f << " still bonded";
   }
   // The right half is held along x only (its pulled edge): one part, free in y.
-  EXPECT_EQ(failure.floating_parts(), 1u);
+  EXPECT_EQ(state.floating_parts, 1u);
   const Eigen::MatrixXd A = cut.A().to_dense();
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A, Eigen::EigenvaluesOnly);
   const double ratio = eig.eigenvalues().minCoeff() / eig.eigenvalues().maxCoeff();
-  std::printf("cut plate: %zu floating part(s), eigenvalue ratio of A %.3e\n", failure.floating_parts(),
-              ratio);
+  std::printf("cut plate: %zu floating part(s), eigenvalue ratio of A %.3e\n", state.floating_parts, ratio);
   EXPECT_GT(ratio, 1e-12);
   // Solution: the left half at rest, the right half moved rigidly by 0.004
   // along x. A support with a force on it would bend or shift the half.
@@ -119,9 +135,9 @@ TEST(FloatingParts, CutFreeHalfIsHeldWithoutForce) {
 
 TEST(FloatingParts, UnbalancedCutFreePartIsAnError) {
   const auto model = setup::build_discretization(plate(true));
-  evolution::BondFailure failure(model);
+  evolution::RunState state(model);
   try {
-    cut_plate(model, failure);
+    cut_plate(model, state);
     FAIL() << "a part cut free with a traction on it was accepted";
   } catch (const Error& e) {
     const std::string what = e.what();
@@ -137,19 +153,18 @@ TEST(FloatingParts, ForceOnANodeLeftWithoutStiffnessIsAnError) {
   auto c = plate(true);
   c.fracture.s_crit = 1e-12;
   const auto model = setup::build_discretization(c);
-  evolution::BondFailure failure(model);
   system::ConstrainedSystem sys = constrained_system(model);
-  std::vector<double> u(static_cast<std::size_t>(model.dofmap.num_dofs()), 0.0);
+  evolution::RunState state(model);
+  std::vector<double>& u = state.u;
   for (Index cell = 0; cell < model.mesh.num_cells(); ++cell)
     if (model.mesh.cell_centroid(cell).x() > 3.75)
       for (Index a : model.dofmap.cell_nodes(cell)) {
         const double d = model.dofmap.node_coordinate(a).x() - 3.75;
         u[static_cast<std::size_t>(a * 2)] = d * d;
       }
-  const auto bonds = failure.select(u);
-  ASSERT_GT(bonds.size(), 50u);
+  ASSERT_GT(evolution::BondFailure(model).select(state).size(), 50u);
   try {
-    failure.apply(bonds, sys);
+    break_and_support(model, state, sys);
     FAIL() << "a node left without stiffness under a force was accepted";
   } catch (const Error& e) {
     const std::string what = e.what();

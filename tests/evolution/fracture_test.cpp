@@ -53,11 +53,19 @@ ElasticState elastic_state(const casefile::CaseConfig& c) {
   const auto model = setup::build_discretization(elastic);
   auto run = run::run_static(model, {scratch_dir("elastic"), true});
   const evolution::BondFailure failure(model);
+  const evolution::RunState intact(model);
   ElasticState out;
-  for (const auto& b : assembly::bonds_over(failure.space(), run.displacement, 0.0))
+  for (const auto& b : assembly::bonds_over(failure.space(intact), run.displacement, 0.0))
     out.max_stretch = std::max(out.max_stretch, b.stretch);
   out.u = std::move(run.displacement);
   return out;
+}
+
+/// A state of `model` at displacement u, nothing failed.
+evolution::RunState state_at(const setup::Discretization& model, const std::vector<double>& u) {
+  evolution::RunState state(model);
+  state.u = u;
+  return state;
 }
 
 double max_stretch_per_load(const casefile::CaseConfig& c) {
@@ -97,10 +105,13 @@ TEST(Fracture, IncrementalDowndateEqualsReassembly) {
       u[static_cast<std::size_t>(a * dim)] = 0.5e-3 * x.x() + (x.x() > middle ? 2e-3 : 0.0);
     }
     evolution::BondFailure failure(model);
-    const auto bonds = failure.select(u);
+    evolution::RunState state(model);
+    state.u = u;
+    const auto bonds = failure.select(state);
     ASSERT_GT(bonds.size(), 10u);
-    const evolution::FailureEnergy energy = failure.apply(bonds, system);
-    EXPECT_EQ(failure.broken().size(), bonds.size());
+    const evolution::FailureEnergy energy = failure.apply(bonds, state, system);
+    EXPECT_EQ(state.failed.size(), bonds.size());
+    EXPECT_EQ(state.failed_in_order.size(), bonds.size());
     // Dissipated energy (THEORY §5): each bond's ½ W ᾱ c (s_crit |ξ|)² =
     // ½ k |ξ|⁴ s_crit²; the overshoot is what it held beyond that (> 0: every
     // selected bond is over s_crit), and the two add up to the energy held.
@@ -109,13 +120,13 @@ TEST(Fracture, IncrementalDowndateEqualsReassembly) {
       critical += 0.5 * b.k * std::pow(b.xi.squaredNorm(), 2) * failure.s_crit() * failure.s_crit();
       held += b.energy;
     }
-    EXPECT_NEAR(failure.dissipated(), critical, 1e-12 * critical);
-    EXPECT_NEAR(failure.dissipated() + failure.overshoot(), held, 1e-12 * held);
-    EXPECT_GT(failure.overshoot(), 0.0);
-    EXPECT_EQ(energy.dissipated, failure.dissipated());
-    EXPECT_EQ(energy.overshoot, failure.overshoot());
+    EXPECT_NEAR(state.energy.dissipated, critical, 1e-12 * critical);
+    EXPECT_NEAR(state.energy.dissipated + state.energy.overshoot, held, 1e-12 * held);
+    EXPECT_GT(state.energy.overshoot, 0.0);
+    EXPECT_EQ(energy.dissipated, state.energy.dissipated);
+    EXPECT_EQ(energy.overshoot, state.energy.overshoot);
     // Reference: reassembled without the failed bonds, then constrained.
-    const system::ConstrainedSystem ref(model, system::assemble_stiffness(model, &failure.broken()).K,
+    const system::ConstrainedSystem ref(model, system::assemble_stiffness(model, &state.failed).K,
                                         setup::build_dirichlet(model), no_force);
     const la::Matrix& A_ref = ref.A();
     const la::Vector& rhs_ref = ref.rhs_unit();
@@ -142,8 +153,8 @@ TEST(Fracture, IncrementalDowndateEqualsReassembly) {
     }
     EXPECT_GT((Kd - K_intact).cwiseAbs().maxCoeff(), 1e-6 * scale);  // the failures did change K
     // Failed bonds never come back: a larger displacement finds none of them.
-    for (double& v : u) v *= 10.0;
-    for (const auto& b : failure.select(u)) EXPECT_FALSE(failure.broken().contains(b.id));
+    for (double& v : state.u) v *= 10.0;
+    for (const auto& b : failure.select(state)) EXPECT_FALSE(state.failed.contains(b.id));
   }
 }
 
@@ -227,10 +238,10 @@ TEST(Fracture, NoFailRegionsAndIntraCellRuleFilterTheSelection) {
   left.upper = Vec3(2.0, 3.0, 0.0);
   c.regions = {left};
   const auto free_model = setup::build_discretization(c);
-  const auto expected = evolution::BondFailure(free_model).select(run.u);
+  const auto expected = evolution::BondFailure(free_model).select(state_at(free_model, run.u));
   c.fracture.no_fail = {"left_half"};
   const auto kept_model = setup::build_discretization(c);
-  const auto selected = evolution::BondFailure(kept_model).select(run.u);
+  const auto selected = evolution::BondFailure(kept_model).select(state_at(kept_model, run.u));
   const auto& in_left = kept_model.mesh.cell_sets.at("left_half");
   auto is_left = [&](Index cell) { return std::binary_search(in_left.begin(), in_left.end(), cell); };
   ASSERT_TRUE(std::is_sorted(in_left.begin(), in_left.end()));
@@ -246,7 +257,8 @@ TEST(Fracture, NoFailRegionsAndIntraCellRuleFilterTheSelection) {
   // intra_cell_failure = false: the same selection less the bonds inside one cell.
   c.fracture.no_fail.clear();
   c.fracture.intra_cell_failure = false;
-  const auto inter = evolution::BondFailure(setup::build_discretization(c)).select(run.u);
+  const auto inter_model = setup::build_discretization(c);
+  const auto inter = evolution::BondFailure(inter_model).select(state_at(inter_model, run.u));
   std::size_t intra = 0;
   for (const auto& b : expected) intra += b.id.e == b.id.f ? 1 : 0;
   ASSERT_GT(intra, 0u) << "no intra-cell bond over the threshold: the check would be vacuous";

@@ -1,6 +1,7 @@
 #pragma once
-// Bond failure by critical stretch (THEORY §5): which bonds break after a
-// solve, and the incremental update of the assembled matrices when they do.
+// Bond failure by critical stretch (THEORY §5), the first evolution component
+// (component.hpp): which bonds break after a solve, and the incremental
+// update of the assembled matrices when they do.
 // A failed bond's block (pair_kernel.hpp, bond_block) is subtracted from K
 // and from the constrained copy A, and the right-hand side is corrected for
 // its columns on prescribed dofs; nothing is reassembled, so one update costs
@@ -8,9 +9,7 @@
 
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/bonds/broken_bonds.hpp"
-#include "perimorph/la/matrix.hpp"
-#include "perimorph/la/vector.hpp"
-#include "perimorph/setup/boundary_conditions.hpp"
+#include "perimorph/evolution/component.hpp"
 #include "perimorph/setup/discretization.hpp"
 #include "perimorph/system/constrained_system.hpp"
 
@@ -18,11 +17,6 @@
 
 namespace perimorph::evolution {
 
-/// `total`: the area of every broken face. `projected`: for each normal
-/// axis, the broken faces with that normal projected along it (a face position
-/// counted once however many rows of faces are broken there), the largest
-/// over the axes: the area of a crack running across that axis, not inflated
-/// by a band of failed cells. NaN on an unstructured mesh.
 /// The energy of bonds broken by one apply() (THEORY §5): `dissipated` counts
 /// each at the critical stretch, ½ W ᾱ c (s_crit |ξ|)² (the per-bond energy of
 /// the G_c closed forms and of `perimorph gc`); `overshoot` is what they held
@@ -38,66 +32,67 @@ struct FractureFields {
   std::vector<double> dissipated;  ///< energy of the failed bonds at s_crit, half to each end's cell
 };
 
+/// `total`: the area of every broken face. `projected`: for each normal
+/// axis, the broken faces with that normal projected along it (a face position
+/// counted once however many rows of faces are broken there), the largest
+/// over the axes: the area of a crack running across that axis, not inflated
+/// by a band of failed cells. NaN on an unstructured mesh.
 struct CrackArea {
   double total = 0.0, projected = 0.0;
 };
 
-class BondFailure {
+/// Bond failure as an evolution component: inspect selects the bonds over
+/// the criterion at the state's displacement, apply breaks them by downdating
+/// the system (Effect::downdate). Dofs left with no stiffness and parts cut
+/// free are the next component's (PartSupport, part_support.hpp).
+class BondFailure final : public Component {
  public:
-  explicit BondFailure(const setup::Discretization& model);
+  explicit BondFailure(const setup::Discretization& disc);
 
-  /// The space the stiffness is assembled with, failed bonds included.
-  assembly::NonlocalSpace space() const;
+  std::string_view name() const override { return "bond failure"; }
+  /// Keeps select(state) as the proposal; its size is the number of bonds.
+  Proposal inspect(const RunState& state, const system::ConstrainedSystem& system) override;
+  /// Breaks the proposed bonds (apply below); Effect::downdate.
+  Effect apply(RunState& state, system::ConstrainedSystem& system) override;
+
+  /// The bonds proposed by the last inspect (what the last apply broke).
+  const std::vector<assembly::StretchedBond>& proposed() const { return proposed_; }
+  /// Their energy, from the last apply.
+  const FailureEnergy& applied_energy() const { return applied_; }
+
+  /// The space the stiffness is assembled with, the state's failed bonds left out.
+  assembly::NonlocalSpace space(const RunState& state) const;
   double s_crit() const { return s_crit_; }
 
-  /// The intact bonds to break at displacement u: those with s > s_crit, or
-  /// with rule = fraction those with s ≥ fraction · the largest such s;
-  /// bonds with an end in a [fracture] no_fail region, and with
-  /// intra_cell_failure = false bonds between two points of one cell, are
-  /// never selected.
-  std::vector<assembly::StretchedBond> select(std::span<const double> u) const;
+  /// The intact bonds of `state` to break at its displacement: those with
+  /// s > s_crit, or with rule = fraction those with s ≥ fraction · the
+  /// largest such s; bonds with an end in a [fracture] no_fail region, and
+  /// with intra_cell_failure = false bonds between two points of one cell,
+  /// are never selected. Grouped by cell pair.
+  std::vector<assembly::StretchedBond> select(const RunState& state) const;
 
-  /// Breaks `bonds` (from select at the current u) in `system`: K −= their
-  /// blocks; A −= their blocks on free rows and columns; rhs_unit[i] += B_ij g_j
-  /// for free i and prescribed j (g = the prescribed values at load factor 1).
-  /// Returns their energy, at s_crit and beyond it. Dofs left with no
-  /// stiffness, and parts cut free of every support, are held by springs on A
-  /// (no force on them). A and K are finalized here and the solver takes the
-  /// new A (ConstrainedSystem::operator_changed).
-  FailureEnergy apply(const std::vector<assembly::StretchedBond>& bonds, system::ConstrainedSystem& system);
+  /// Breaks `bonds` (from select at the state's displacement): records them in
+  /// the state (failed bonds, D and overshoot in the ledger, D per cell) and
+  /// downdates `system` by their blocks (ConstrainedSystem::downdate): K −=
+  /// the blocks; A −= them on free rows and columns; the right-hand side takes
+  /// their prescribed columns. Finalizes K and A. Returns their energy, at
+  /// s_crit and beyond it.
+  FailureEnergy apply(const std::vector<assembly::StretchedBond>& bonds, RunState& state,
+                      system::ConstrainedSystem& system) const;
 
-  const bonds::BrokenBonds& broken() const { return broken_; }
-  /// D of THEORY §5: Σ over the failed bonds of the energy each held at
-  /// s = s_crit, ½ W ᾱ c (s_crit |ξ|)², cumulative (FailureEnergy::dissipated).
-  double dissipated() const { return energy_.dissipated; }
-  /// Σ over the failed bonds of the energy each held beyond s_crit at the
-  /// solve that found it over the criterion, cumulative: the overshoot of the
-  /// finite load steps (FailureEnergy::overshoot).
-  double overshoot() const { return energy_.overshoot; }
-  /// Free dofs left with no bond and no local stiffness, held at zero (their
-  /// row of A is otherwise zero).
-  std::size_t detached_dofs() const { return detached_; }
-  /// Parts cut free by failures and held by a minimal support
-  /// (floating_parts.hpp), cumulative; apply() throws Error for one whose
-  /// applied forces do not balance.
-  std::size_t floating_parts() const { return floating_parts_; }
   /// Damage index and dissipated energy (at s_crit) per cell, for the VTU.
-  FractureFields fields() const;
+  FractureFields fields(const RunState& state) const;
   /// Crack area from the faces between adjacent cells all of whose bonds
   /// have failed (structured meshes; 2D: length × thickness; 1D: the
   /// cross-section). Pre-crack cuts are not counted (their bonds never existed).
-  CrackArea crack_area() const;
+  CrackArea crack_area(const RunState& state) const;
 
  private:
-  const setup::Discretization& model_;
+  const setup::Discretization& disc_;  ///< non-owning; outlives the component
   double s_crit_ = 0.0;
-  bonds::BrokenBonds broken_;
-  FailureEnergy energy_;
-  std::vector<double> cell_dissipated_;
-  std::size_t detached_ = 0;
-  std::size_t floating_parts_ = 0;
-  std::vector<Index> held_;    ///< detached dofs and pins of floating parts
   std::vector<char> no_fail_;  ///< per cell, 1 in a no_fail region; empty when there is none
+  std::vector<assembly::StretchedBond> proposed_;
+  FailureEnergy applied_;
 };
 
 }  // namespace perimorph::evolution

@@ -1,16 +1,18 @@
 #pragma once
-// The quasi-static driver of the local model (issue 2): for each increment of
-// the load ramp, solve K u = F with the constraints eliminated, then report
-// reactions, energies and fields. Later stages (bond breaking, damage,
-// adaptivity) plug into the same loop.
+// The quasi-static run (THEORY §4–§6): for each increment of the load ramp,
+// solve A u = λ rhs with the constraints eliminated, let the evolution
+// components (bond failure, the support of parts cut free; later adaptive α
+// and damage) change the model and re-solve until they are quiet, then report
+// reactions, energies and fields. The steps are QuasiStaticRun's
+// (quasi_static_run.hpp).
 
-#include "perimorph/evolution/bond_failure.hpp"
+#include "perimorph/evolution/component.hpp"
 #include "perimorph/la/linear_solver.hpp"
 #include "perimorph/run/run_output.hpp"
 #include "perimorph/setup/boundary_conditions.hpp"
 #include "perimorph/setup/discretization.hpp"
 
-#include <optional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,13 +34,15 @@ struct RunOptions {
 /// What a run needs besides the stiffness, built from the case before any
 /// assembly, so that a case error stops `run` early and `check` finds every
 /// error `run` would find before solving: the constraints, the loads, the
-/// reaction sets and, with [fracture], the bond-failure set-up (critical
-/// stretch, no_fail regions). Throws InputError naming the case-file entry.
+/// reaction sets and the evolution components (with [fracture]: bond failure,
+/// whose set-up checks the critical stretch and no_fail regions, and the
+/// support of parts cut free). Throws InputError naming the case-file entry.
 struct RunSetup {
   setup::DirichletData bc;
   std::vector<double> F;  ///< external force at load factor 1
   std::vector<setup::ReactionSet> sets;
-  std::optional<evolution::BondFailure> failure;  ///< with [fracture]
+  /// In the order the run asks them after each solve (evolution/component.hpp).
+  std::vector<std::unique_ptr<evolution::Component>> components;
 };
 RunSetup prepare_run(const setup::Discretization& model);
 

@@ -65,17 +65,17 @@ void ConstrainedSystem::downdate(std::span<const Index> dofs, std::span<const do
   }
 }
 
-std::vector<Index> ConstrainedSystem::finish_downdate() {
+const std::vector<Index>& ConstrainedSystem::finish_downdate() {
   K_.finalize();
   A_.finalize();
   rhs_unit_.add_at(rhs_at_, rhs_add_);
   rhs_at_.clear();
   rhs_add_.clear();
-  std::vector<Index> touched;
-  touched.swap(touched_);
-  std::sort(touched.begin(), touched.end());
-  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-  return touched;
+  last_downdated_.swap(touched_);
+  touched_.clear();
+  std::sort(last_downdated_.begin(), last_downdated_.end());
+  last_downdated_.erase(std::unique(last_downdated_.begin(), last_downdated_.end()), last_downdated_.end());
+  return last_downdated_;
 }
 
 std::vector<Index> ConstrainedSystem::without_stiffness(std::span<const Index> dofs) const {

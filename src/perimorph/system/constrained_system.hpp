@@ -42,8 +42,11 @@ class ConstrainedSystem {
   /// prescribed values at load factor 1). Call finish_downdate after the last.
   void downdate(std::span<const Index> dofs, std::span<const double> block);
   /// Finalizes K and A after downdates; returns the free dofs they touched
-  /// (sorted, unique).
-  std::vector<Index> finish_downdate();
+  /// (sorted, unique), also kept as last_downdated().
+  const std::vector<Index>& finish_downdate();
+  /// The free dofs touched by the downdates that the last finish_downdate
+  /// closed (sorted, unique).
+  const std::vector<Index>& last_downdated() const { return last_downdated_; }
   /// Of `dofs`, those whose diagonal of A has fallen to round-off (1e-12) of
   /// its value before any downdate: dofs left with no stiffness.
   std::vector<Index> without_stiffness(std::span<const Index> dofs) const;
@@ -75,6 +78,7 @@ class ConstrainedSystem {
   std::vector<double> initial_diagonal_;  ///< of A, before any downdate
   // Collected by downdate, applied by finish_downdate.
   std::vector<Index> touched_, rhs_at_, free_dofs_;
+  std::vector<Index> last_downdated_;
   std::vector<double> rhs_add_, negative_;
 };
 

@@ -1,0 +1,73 @@
+#include "perimorph/evolution/part_support.hpp"
+
+#include "perimorph/assembly/bond_stretch.hpp"
+#include "perimorph/core/error.hpp"
+#include "perimorph/evolution/floating_parts.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace perimorph::evolution {
+
+Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSystem& system) {
+  detached_.clear();
+  pins_.clear();
+  parts_ = 0;
+  const std::size_t first = seen_;
+  seen_ = state.failed_in_order.size();
+  if (first == seen_) return {};
+  const int dim = disc_.dim();
+  const std::vector<double>& applied_force = system.applied_force();
+  // A free dof whose every bond has failed has a zero row: the matrix turns
+  // singular. Such a dof is coupled to nothing, so holding it at zero by a
+  // spring of its initial stiffness changes no other dof.
+  detached_ = system.without_stiffness(system.last_downdated());
+  for (Index d : detached_) {
+    const double force = applied_force[static_cast<std::size_t>(d)];
+    if (force != 0.0) {
+      const Vec3 x = disc_.dofmap.node_coordinate(d / dim);
+      throw Error(
+          fmt::format("bond failures have left the node at ({:g}, {:g}, {:g}) with no stiffness in "
+                      "direction {} while an applied force {:g} acts on it: there is no quasi-static "
+                      "equilibrium",
+                      x.x(), x.y(), x.z(), "xyz"[d % dim], force));
+    }
+  }
+  // A cell pair that lost its last intact bond may have cut a part free
+  // (floating_parts.hpp). The bonds fail grouped by cell pair: each pair is
+  // looked at once.
+  const auto& nl = *disc_.nonlocal;
+  assembly::NonlocalSpace space{disc_.mesh, disc_.dofmap, nl.points, nl.graph, nl.kernel};
+  space.broken = &state.failed;
+  bool separated = false;
+  for (std::size_t k = first; k < seen_ && !separated; ++k) {
+    const auto& id = state.failed_in_order[k];
+    if (k > first && state.failed_in_order[k - 1].e == id.e && state.failed_in_order[k - 1].f == id.f)
+      continue;
+    separated = !assembly::has_intact_bond(space, id.e, id.f);
+  }
+  if (separated) {
+    std::vector<Index> held = state.held_dofs;
+    held.insert(held.end(), detached_.begin(), detached_.end());
+    const auto& prescribed = system.bc().dofs;
+    held.insert(held.end(), prescribed.begin(), prescribed.end());
+    std::sort(held.begin(), held.end());
+    FloatingParts parts = find_floating_parts(disc_, space, held, applied_force);
+    pins_ = std::move(parts.pins);
+    parts_ = parts.parts;
+  }
+  return {detached_.size() + pins_.size()};
+}
+
+Effect PartSupport::apply(RunState& state, system::ConstrainedSystem& system) {
+  system.hold(detached_, true);
+  state.detached_dofs += detached_.size();
+  state.held_dofs.insert(state.held_dofs.end(), detached_.begin(), detached_.end());
+  system.hold(pins_, false);
+  state.held_dofs.insert(state.held_dofs.end(), pins_.begin(), pins_.end());
+  state.floating_parts += static_cast<std::size_t>(parts_);
+  return Effect::hold;
+}
+
+}  // namespace perimorph::evolution

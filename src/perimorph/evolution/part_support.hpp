@@ -1,0 +1,42 @@
+#pragma once
+// The support of what bond failure cuts loose (THEORY §5), the second
+// evolution component (component.hpp). After bonds fail, a free dof may be
+// left with no stiffness at all (its row of A is zero: the matrix turns
+// singular), and a cell pair that lost its last intact bond may have cut a
+// part free of every support (floating_parts.hpp). Such a dof is held at zero
+// by a spring of its initial stiffness, such a part by springs on a minimal
+// set of its dofs (statically determinate, so they carry no force when the
+// part's loads balance). Effect::hold.
+
+#include "perimorph/evolution/component.hpp"
+#include "perimorph/setup/discretization.hpp"
+
+#include <vector>
+
+namespace perimorph::evolution {
+
+class PartSupport final : public Component {
+ public:
+  explicit PartSupport(const setup::Discretization& disc) : disc_(disc) {}
+
+  std::string_view name() const override { return "support of parts cut free"; }
+  /// Looks at the bonds failed since the last inspect: the free dofs the
+  /// system's last downdate left with no stiffness, and, if one of their cell
+  /// pairs has no intact bond left, the parts cut free. Throws Error for a
+  /// detached dof under an applied force, or a part whose applied forces do
+  /// work on a free rigid-body mode: there is no quasi-static equilibrium.
+  /// The proposal counts the dofs to hold.
+  Proposal inspect(const RunState& state, const system::ConstrainedSystem& system) override;
+  /// Holds the proposed dofs (ConstrainedSystem::hold: detached dofs with a
+  /// zero right-hand side, then the pins of the parts) and records them in the
+  /// state (held dofs, detached dofs, floating parts). Effect::hold.
+  Effect apply(RunState& state, system::ConstrainedSystem& system) override;
+
+ private:
+  const setup::Discretization& disc_;  ///< non-owning; outlives the component
+  std::size_t seen_ = 0;               ///< failed bonds already looked at (RunState::failed_in_order)
+  std::vector<Index> detached_, pins_;
+  int parts_ = 0;
+};
+
+}  // namespace perimorph::evolution

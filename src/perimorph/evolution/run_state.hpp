@@ -1,0 +1,54 @@
+#pragma once
+// The state of a run (THEORY §5, §6): what the increments change and the next
+// increment starts from. The run loop owns it; evolution components read it
+// in inspect and change it in apply. Everything here is keyed by what outlives
+// a rebuilt discretization (cells, non-local points, quadrature points), not
+// by dofs, except the displacement itself.
+
+#include "perimorph/alpha/alpha_field.hpp"
+#include "perimorph/bonds/broken_bonds.hpp"
+#include "perimorph/core/types.hpp"
+
+#include <cstddef>
+#include <vector>
+
+namespace perimorph::setup {
+struct Discretization;
+}
+
+namespace perimorph::evolution {
+
+/// The energy balance of THEORY §5: the work W of the external forces, the
+/// strain energy U of the last state, the fracture dissipation D (every failed
+/// bond at s_crit) and the overshoot of the finite load steps (what failed
+/// bonds held beyond s_crit). W − U − D − overshoot ≥ 0 is the energy
+/// released by re-equilibration after failures.
+struct EnergyLedger {
+  double external_work = 0.0;  ///< W, cumulative
+  double strain_energy = 0.0;  ///< U, of the last recorded state
+  double dissipated = 0.0;     ///< D, cumulative
+  double overshoot = 0.0;      ///< cumulative
+  double released() const { return external_work - strain_energy - dissipated - overshoot; }
+};
+
+struct RunState {
+  /// An initial state of `disc`: u = 0, load factor 0, its α, no failed
+  /// bond, nothing held, an empty ledger.
+  explicit RunState(const setup::Discretization& disc);
+
+  int increment = 0;         ///< the increment being computed (1-based), 0 before the first
+  double load_factor = 0.0;  ///< λ of that increment
+  std::vector<double> u;     ///< the displacement of the last solve (dof vector)
+  alpha::AlphaField alpha;   ///< α of the discretization the run is on
+
+  bonds::BrokenBonds failed;                   ///< failed bonds, keyed by cell and point
+  std::vector<bonds::BondId> failed_in_order;  ///< the same, in the order they failed
+  std::vector<double> cell_dissipated;         ///< D per cell, half of each failed bond to each end
+  std::vector<Index> held_dofs;                ///< dofs held by springs: detached dofs, pins of parts
+  std::size_t detached_dofs = 0;               ///< free dofs left with no stiffness, cumulative
+  std::size_t floating_parts = 0;              ///< parts cut free and held, cumulative
+  std::vector<double> history;                 ///< at quadrature points; empty: no history-dependent law
+  EnergyLedger energy;
+};
+
+}  // namespace perimorph::evolution

@@ -1,0 +1,275 @@
+#include "perimorph/run/quasi_static_run.hpp"
+
+#include "perimorph/core/error.hpp"
+#include "perimorph/io/progress.hpp"
+#include "perimorph/la/petsc_session.hpp"
+#include "perimorph/system/stiffness.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <filesystem>
+
+namespace perimorph::run {
+
+namespace {
+
+std::string basename_of(const casefile::CaseConfig& config) {
+  if (!config.output.basename.empty()) return config.output.basename;
+  return std::filesystem::path(config.path).stem().string();
+}
+
+std::vector<Vec3> sum_reactions(const std::vector<setup::ReactionSet>& sets, std::span<const double> r,
+                                int dim) {
+  std::vector<Vec3> out;
+  for (const auto& s : sets) {
+    Vec3 f = Vec3::Zero();
+    for (Index n : s.dof_nodes)
+      for (int d = 0; d < dim; ++d) f[d] += r[static_cast<std::size_t>(n * dim + d)];
+    out.push_back(f);
+  }
+  return out;
+}
+
+/// "[fracture] max_iterations in case.toml (now 7)" or "(default 10000)".
+std::string max_iterations_source(const casefile::FractureSpec& spec) {
+  const bool given = spec.max_iterations != casefile::FractureSpec{}.max_iterations;
+  return fmt::format("[fracture] max_iterations in {} ({} {})", spec.where.file, given ? "now" : "default",
+                     spec.max_iterations);
+}
+
+}  // namespace
+
+QuasiStaticRun::QuasiStaticRun(const setup::Discretization& disc, const RunOptions& options)
+    : disc_(disc),
+      start_(std::chrono::steady_clock::now()),
+      state_(disc),
+      u_(disc.dofmap.num_dofs(), disc.dim()),
+      internal_(disc.dofmap.num_dofs(), disc.dim()),
+      u_prev_(static_cast<std::size_t>(disc.dofmap.num_dofs()), 0.0),
+      fint_prev_(static_cast<std::size_t>(disc.dofmap.num_dofs()), 0.0) {
+  const auto& config = disc.config;
+  if (!options.progress)
+    own_progress_ = std::make_unique<io::ProgressLine>(increments(), !options.quiet, start_);
+  progress_ = options.progress ? options.progress : own_progress_.get();
+  la::add_options(config.solver.petsc_options);
+
+  progress_->phase("loads");
+  setup_ = prepare_run(disc);
+  for (auto& c : setup_.components)
+    if (auto* f = dynamic_cast<evolution::BondFailure*>(c.get())) fracture_ = f;
+
+  progress_->phase("assembly");
+  system::AssembledStiffness assembled = system::assemble_stiffness(disc);
+
+  progress_->phase("solver set-up");
+  system_ = std::make_unique<system::ConstrainedSystem>(disc, std::move(assembled.K), std::move(setup_.bc),
+                                                        setup_.F);
+  system_->attach_solver();
+
+  for (const auto& s : setup_.sets) summary_.reaction_names.push_back(s.name);
+  summary_.output_directory = resolve_output_directory(config, options);
+  output_ = std::make_unique<RunOutput>(disc, summary_.output_directory, basename_of(config),
+                                        summary_.reaction_names);
+  summary_.csv_path = output_->csv_path();
+  summary_.pvd_path = config.output.vtu ? output_->pvd_path() : "";
+  progress_->start_increments();
+}
+
+QuasiStaticRun::~QuasiStaticRun() = default;
+
+std::string QuasiStaticRun::kept() const {
+  const int done = state_.increment - 1;
+  return done == 0 ? fmt::format("No increment completed (output directory {})", summary_.output_directory)
+                   : fmt::format("Results of increments 1..{} are in {}", done, summary_.output_directory);
+}
+
+void QuasiStaticRun::apply_load(int i) {
+  state_.increment = i + 1;
+  state_.load_factor = disc_.config.loading.factors[static_cast<std::size_t>(i)];
+  rec_ = IncrementRecord{};
+  failed_before_ = state_.failed.size();
+  dissipated_before_ = state_.energy.dissipated;
+}
+
+void QuasiStaticRun::solve() {
+  const double lambda = state_.load_factor;
+  try {
+    summary_.last_solve = system_->solve(lambda, u_);
+  } catch (const SolverError& e) {
+    progress_->finish();
+    const std::size_t failed = state_.failed.size();
+    throw SolverError(fmt::format(
+        "increment {}/{} (load factor {}): {}{}\n{}", state_.increment, increments(), lambda, e.what(),
+        failed > 0 ? fmt::format(". {} bonds have failed: they can leave a mechanism, e.g. a part held only "
+                                 "by bonds normal to its motion (parts cut free completely are held "
+                                 "automatically, CSV column floating_parts)",
+                                 failed)
+                   : "",
+        kept()));
+  }
+  warn_unused_options();
+  double& work = state_.energy.external_work;
+  if (rec_.break_iterations == 0) {
+    // Work of all external forces (applied + reactions = K u at equilibrium)
+    // on the elastic step from the last state.
+    system_->K().mult(u_, internal_);
+    state_.u = u_.to_std();
+    fint_ = internal_.to_std();
+    for (std::size_t k = 0; k < state_.u.size(); ++k)
+      work += 0.5 * (fint_[k] + fint_prev_[k]) * (state_.u[k] - u_prev_[k]);
+    return;
+  }
+  // A re-equilibration at fixed load.
+  const std::vector<double> u_before = std::move(state_.u);
+  if (fracture_ && !fracture_->proposed().empty()) {
+    double max_stretch = 0.0;
+    for (const auto& b : fracture_->proposed()) max_stretch = std::max(max_stretch, b.stretch);
+    output_->add_failure_row(state_.increment, rec_.break_iterations, fracture_->proposed().size(),
+                             fracture_->applied_energy(), max_stretch / fracture_->s_crit(),
+                             summary_.last_solve.iterations);
+  }
+  state_.u = u_.to_std();
+  const std::vector<double>& F = system_->applied_force();
+  for (std::size_t k = 0; k < state_.u.size(); ++k) work += lambda * F[k] * (state_.u[k] - u_before[k]);
+}
+
+void QuasiStaticRun::warn_unused_options() {
+  // The solver has read its options (the preconditioner's at its first set-up).
+  if (options_checked_) return;
+  options_checked_ = true;
+  if (const auto unused = la::unused_options(); !unused.empty())
+    progress_->message(
+        fmt::format("warning: PETSc did not use the option(s) {}: misspelt, or meant for a solver or "
+                    "preconditioner not in use (the case's [solver] petsc_options and the command line; "
+                    "-help lists the options the solver reads)",
+                    fmt::join(unused, ", ")));
+}
+
+bool QuasiStaticRun::evolve() {
+  bool changed = false;
+  for (auto& component : setup_.components) {
+    evolution::Proposal proposal;
+    try {
+      proposal = component->inspect(state_, *system_);
+    } catch (const Error& e) {  // e.g. a part cut free with unbalanced loads (part_support.hpp)
+      stop_unsupported(e);
+    }
+    if (proposal.quiet()) continue;
+    if (!changed) {
+      if (rec_.break_iterations == disc_.config.fracture.max_iterations) stop_unsettled(proposal.changes);
+      ++rec_.break_iterations;
+    }
+    component->apply(state_, *system_);
+    changed = true;
+  }
+  if (!changed) return false;
+  system_->operator_changed();
+  if (fracture_ && !fracture_->proposed().empty())
+    output_->add_failed_bonds(disc_, state_.increment, rec_.break_iterations, fracture_->proposed(),
+                              fracture_->s_crit());
+  return true;
+}
+
+void QuasiStaticRun::stop_unsettled(std::size_t over) {
+  rec_.bonds_broken_increment = state_.failed.size() - failed_before_;
+  rec_.dissipated_increment = state_.energy.dissipated - dissipated_before_;
+  record(true);
+  progress_->finish();
+  const int i = state_.increment;
+  const auto& output = *output_;
+  const std::string files = output.writes_vtu()
+                                ? fmt::format("{} and its row in {}", output.vtu_path(i), output.csv_path())
+                                : fmt::format("its row in {} ([output] vtu = false)", output.csv_path());
+  throw Error(fmt::format(
+      "increment {}/{} (load factor {}): bonds still fail after {} bond-breaking iterations: {} "
+      "bonds "
+      "failed in this increment and {} more are over the criterion now. The crack is running "
+      "unstably at this load (or the iterations do not settle). Use smaller load increments or "
+      "raise {}. The state after the last iteration is kept as increment {}: {}; every iteration "
+      "is in {}. {}",
+      i, increments(), state_.load_factor, rec_.break_iterations, rec_.bonds_broken_increment, over,
+      max_iterations_source(disc_.config.fracture), i, files, output.failures_csv_path(), kept()));
+}
+
+void QuasiStaticRun::stop_unsupported(const std::exception& e) {
+  progress_->finish();
+  const int i = state_.increment;
+  output_->write_increment_vtu(disc_, i, state_.load_factor, state_.u,
+                               fracture_ ? fracture_->fields(state_) : evolution::FractureFields{});
+  throw Error(
+      fmt::format("increment {}/{} (load factor {}), bond-breaking iteration {}: {}. The displacement "
+                  "before this iteration is written as increment {} ({}); {}",
+                  i, increments(), state_.load_factor, rec_.break_iterations, e.what(), i,
+                  output_->writes_vtu() ? output_->vtu_path(i) : "no VTU: [output] vtu = false", kept()));
+}
+
+void QuasiStaticRun::record(bool force_vtu) {
+  const double lambda = state_.load_factor;
+  const int dim = disc_.dim();
+  const std::vector<double>& uv = state_.u;
+  const std::vector<double>& F = system_->applied_force();
+  if (fracture_) {
+    if (rec_.break_iterations > 0) {
+      system_->K().mult(u_, internal_);
+      fint_ = internal_.to_std();
+    }
+    rec_.bonds_broken = state_.failed.size();
+    rec_.dissipated = state_.energy.dissipated;
+    rec_.overshoot = state_.energy.overshoot;
+    const evolution::CrackArea crack = fracture_->crack_area(state_);
+    rec_.crack_area = crack.projected;
+    rec_.broken_face_area = crack.total;
+    rec_.floating_parts = state_.floating_parts;
+  }
+  std::vector<double> reaction(fint_);
+  for (std::size_t k = 0; k < reaction.size(); ++k) reaction[k] -= lambda * F[k];
+  double energy = 0.0;
+  for (std::size_t k = 0; k < uv.size(); ++k) energy += 0.5 * uv[k] * fint_[k];
+  u_prev_ = uv;
+  fint_prev_ = fint_;
+  state_.energy.strain_energy = energy;
+
+  const double work = state_.energy.external_work;
+  rec_.increment = state_.increment;
+  rec_.load_factor = lambda;
+  rec_.reactions = sum_reactions(setup_.sets, reaction, dim);
+  rec_.strain_energy = energy;
+  rec_.external_work = work;
+  rec_.iterations = summary_.last_solve.iterations;
+  rec_.relative_residual = summary_.last_solve.relative_residual;
+  rec_.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  rec_.released = fracture_ ? work - energy - rec_.dissipated - rec_.overshoot : 0.0;
+  output_->add_row(rec_);
+  const int i = state_.increment;
+  if (force_vtu || i % disc_.config.output.every == 0 || i == increments())
+    output_->write_increment_vtu(disc_, i, lambda, uv,
+                                 fracture_ ? fracture_->fields(state_) : evolution::FractureFields{});
+  summary_.displacement = uv;
+  summary_.reactions = rec_.reactions;
+  summary_.strain_energy = energy;
+  summary_.external_work = work;
+  summary_.history.push_back(rec_);
+}
+
+void QuasiStaticRun::write_increment() {
+  if (fracture_) {
+    rec_.bonds_broken_increment = state_.failed.size() - failed_before_;
+    rec_.dissipated_increment = state_.energy.dissipated - dissipated_before_;
+  }
+  record(false);
+  summary_.increments_done = state_.increment;
+  progress_->update(state_.increment,
+                    fracture_
+                        ? fmt::format("{} its, {} bonds failed ({} iterations)", rec_.iterations,
+                                      rec_.bonds_broken_increment, rec_.break_iterations)
+                        : fmt::format("{} its, residual {:.1e}", rec_.iterations, rec_.relative_residual));
+}
+
+RunSummary QuasiStaticRun::finish() {
+  progress_->finish();
+  return std::move(summary_);
+}
+
+}  // namespace perimorph::run

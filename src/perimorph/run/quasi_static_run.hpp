@@ -1,0 +1,80 @@
+#pragma once
+// The steps of a quasi-static run (THEORY §4–§6), so that run_static reads
+// as the algorithm: apply the load; solve; let every evolution component
+// inspect the state and apply its change, re-solving at fixed load until all
+// are quiet; write the increment. A QuasiStaticRun owns the run's state
+// (evolution/run_state.hpp), its constrained system, its components and its
+// output; it keeps the energy ledger and reports errors with what is kept on
+// disk.
+
+#include "perimorph/evolution/bond_failure.hpp"
+#include "perimorph/evolution/run_state.hpp"
+#include "perimorph/run/run_output.hpp"
+#include "perimorph/run/static_run.hpp"
+#include "perimorph/system/constrained_system.hpp"
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace perimorph::io {
+class ProgressLine;
+}
+
+namespace perimorph::run {
+
+class QuasiStaticRun {
+ public:
+  /// Constraints and loads first (a case error stops the run before the
+  /// assembly), then K, the constrained system with its solver, the output.
+  QuasiStaticRun(const setup::Discretization& disc, const RunOptions& options);
+  ~QuasiStaticRun();
+
+  int increments() const { return static_cast<int>(disc_.config.loading.factors.size()); }
+  /// Starts increment i (0-based) at its load factor.
+  void apply_load(int i);
+  /// Solves at the state's load factor and adds the work of the step to the
+  /// ledger: the first solve of an increment is an elastic step (K fixed on
+  /// it, the trapezoidal rule exact); a re-solve after components changed the
+  /// model is at fixed load (prescribed dofs do not move, applied forces are
+  /// constant: λ F·Δu exactly). Throws SolverError naming the increment.
+  void solve();
+  /// Every component in order: inspect, and apply its proposal unless quiet;
+  /// then the solver takes the changed operator. False when all were quiet.
+  /// With [fracture], an increment still changing after max_iterations passes
+  /// stops the run (Error) with its state written.
+  bool evolve();
+  /// The increment's CSV row, its VTU (every [output] every, and the last),
+  /// the progress line.
+  void write_increment();
+  RunSummary finish();
+
+ private:
+  /// The CSV row (and VTU when due or `force_vtu`) of the state reached.
+  void record(bool force_vtu);
+  /// "Results of increments 1..N are in DIR" for messages.
+  std::string kept() const;
+  [[noreturn]] void stop_unsettled(std::size_t over);
+  [[noreturn]] void stop_unsupported(const std::exception& e);
+  void warn_unused_options();
+
+  const setup::Discretization& disc_;  ///< non-owning; outlives the run
+  std::chrono::steady_clock::time_point start_;
+  std::unique_ptr<io::ProgressLine> own_progress_;
+  io::ProgressLine* progress_ = nullptr;  ///< non-owning: own_progress_ or the caller's
+  RunSetup setup_;
+  std::unique_ptr<system::ConstrainedSystem> system_;
+  evolution::BondFailure* fracture_ = nullptr;  ///< non-owning: the bond-failure component, if any
+  std::unique_ptr<RunOutput> output_;
+  evolution::RunState state_;
+  la::Vector u_, internal_;                        ///< the solution (initial guess of the next solve), K u
+  std::vector<double> u_prev_, fint_prev_, fint_;  ///< of the last recorded state, and fint of this one
+  IncrementRecord rec_;                            ///< of the increment in progress
+  std::size_t failed_before_ = 0;
+  double dissipated_before_ = 0.0;
+  bool options_checked_ = false;
+  RunSummary summary_;
+};
+
+}  // namespace perimorph::run
