@@ -101,6 +101,61 @@ Voigt6 material_stiffness(const casefile::MaterialSpec& m) {
   return C;
 }
 
+namespace {
+
+/// What α decides (THEORY §3–§4), for a discretization whose mesh, local
+/// quadrature, material and calibrated kernel are set: the non-local points
+/// (α at each), the cell graph (pairs with α > 0 within reach), the morphed C
+/// at the local points, the CG/DG flags and the dof map. With `config_check`,
+/// an [[alpha.region]] that reaches no point is an InputError (a case error;
+/// not checked on a rebuild).
+void place_alpha(Discretization& d, alpha::AlphaField alpha, const std::function<void(const char*)>& phase,
+                 bool config_check) {
+  const auto& config = d.config;
+  const mesh::Mesh& m = d.mesh;
+  const int dim = m.dim();
+  auto& nl = *d.nonlocal;
+  const bool partial_volume = config.nonlocal.horizon_edge == casefile::HorizonEdge::partial_volume;
+  phase("points");
+  nl.alpha = std::move(alpha);
+  nl.points = bonds::make_nonlocal_points(m, config.nonlocal.quadrature, d.scale, nl.alpha, partial_volume);
+  if (config_check) check_alpha_regions(config, nl.alpha, nl.points, m, d.rule);
+  phase("bond graph");
+  const auto& amax = nl.points.cell_alpha_max;
+  // Boxes of the local and non-local points: the graph must hold every cell
+  // the bonds of a non-local point or the horizon integral of a local point
+  // (the morphed C) can reach.
+  std::vector<Vec3> reference;
+  for (const auto& q : fem::gauss_legendre(dim, config.nonlocal.quadrature)) reference.push_back(q.xi);
+  for (const auto& q : d.rule) reference.push_back(q.xi);
+  nl.graph = bonds::find_cell_neighbors(
+      m, bonds::point_boxes(m, reference), nl.points.bond_reach(nl.kernel.horizon), [&](Index e, Index f) {
+        return amax[static_cast<std::size_t>(e)] > 0.0 || amax[static_cast<std::size_t>(f)] > 0.0;
+      });
+  phase("morphed stiffness");
+  d.stiffness = fem::ConstitutiveField(dim, m.num_cells(), static_cast<int>(d.rule.size()));
+  nl.morph = assembly::morph_stiffness(m, d.rule, nl.points, nl.graph, nl.kernel, nl.alpha, nl.material.C0,
+                                       config.nonlocal.coupling == casefile::Coupling::partition
+                                           ? assembly::CouplingRule::partition
+                                           : assembly::CouplingRule::morphing,
+                                       d.stiffness);
+  std::vector<dofs::Continuity> continuity;
+  const auto dg = config.nonlocal.discretization;
+  if (dg != casefile::Discretization::continuous) {
+    const auto flag = dg == casefile::Discretization::discontinuous
+                          ? dofs::Continuity::discontinuous
+                          : dofs::Continuity::discontinuous_constant;
+    continuity.assign(static_cast<std::size_t>(m.num_cells()), dofs::Continuity::continuous);
+    for (Index c = 0; c < m.num_cells(); ++c)
+      if (nl.morph.purely_nonlocal[static_cast<std::size_t>(c)])
+        continuity[static_cast<std::size_t>(c)] = flag;
+  }
+  phase("dof map");
+  d.dofmap = dofs::DofMap(m, dim, continuity);
+}
+
+}  // namespace
+
 Discretization build_discretization(const casefile::CaseConfig& config, const PhaseCallback& on_phase) {
   auto phase = [&](const char* name) {
     if (on_phase) on_phase(name);
@@ -111,7 +166,6 @@ Discretization build_discretization(const casefile::CaseConfig& config, const Ph
   const double scale = dim == 3 ? 1.0 : config.model.thickness;
   auto rule = fem::gauss_legendre(dim, config.model.local_quadrature);
   fem::ConstitutiveField field(dim, m.num_cells(), static_cast<int>(rule.size()));
-  std::vector<dofs::Continuity> continuity;
 
   std::optional<NonlocalModel> nl;
   phase("material");
@@ -133,39 +187,6 @@ Discretization build_discretization(const casefile::CaseConfig& config, const Ph
       nl->calibration.gc_factor *= nl->discrete_factor;
     }
     nl->kernel.scale = nl->calibration.scale / scale;  // bond weights W = t² w w carry t twice
-    phase("points");
-    nl->alpha = make_alpha_field(config);
-    nl->points = bonds::make_nonlocal_points(m, config.nonlocal.quadrature, scale, nl->alpha, partial_volume);
-    check_alpha_regions(config, nl->alpha, nl->points, m, rule);
-    phase("bond graph");
-    const auto& amax = nl->points.cell_alpha_max;
-    // Boxes of the local and non-local points: the graph must hold every cell
-    // the bonds of a non-local point or the horizon integral of a local point
-    // (the morphed C) can reach.
-    std::vector<Vec3> reference;
-    for (const auto& q : fem::gauss_legendre(dim, config.nonlocal.quadrature)) reference.push_back(q.xi);
-    for (const auto& q : rule) reference.push_back(q.xi);
-    nl->graph = bonds::find_cell_neighbors(m, bonds::point_boxes(m, reference),
-                                           nl->points.bond_reach(nl->kernel.horizon), [&](Index e, Index f) {
-                                             return amax[static_cast<std::size_t>(e)] > 0.0 ||
-                                                    amax[static_cast<std::size_t>(f)] > 0.0;
-                                           });
-    phase("morphed stiffness");
-    nl->morph = assembly::morph_stiffness(m, rule, nl->points, nl->graph, nl->kernel, nl->alpha, C0,
-                                          config.nonlocal.coupling == casefile::Coupling::partition
-                                              ? assembly::CouplingRule::partition
-                                              : assembly::CouplingRule::morphing,
-                                          field);
-    const auto dg = config.nonlocal.discretization;
-    if (dg != casefile::Discretization::continuous) {
-      const auto flag = dg == casefile::Discretization::discontinuous
-                            ? dofs::Continuity::discontinuous
-                            : dofs::Continuity::discontinuous_constant;
-      continuity.assign(static_cast<std::size_t>(m.num_cells()), dofs::Continuity::continuous);
-      for (Index c = 0; c < m.num_cells(); ++c)
-        if (nl->morph.purely_nonlocal[static_cast<std::size_t>(c)])
-          continuity[static_cast<std::size_t>(c)] = flag;
-    }
   } else {
     std::vector<int> assigned(static_cast<std::size_t>(m.num_cells()), -1);
     for (const auto& mat : config.materials) {
@@ -182,11 +203,21 @@ Discretization build_discretization(const casefile::CaseConfig& config, const Ph
             "{}: cell {} (centroid {:.4g}, {:.4g}, {:.4g}) has no material; give a material "
             "with region = \"all\" or cover every region",
             config.path, c, m.cell_centroid(c).x(), m.cell_centroid(c).y(), m.cell_centroid(c).z()));
+    phase("dof map");
   }
-  phase("dof map");
-  dofs::DofMap dofmap(m, dim, continuity);
-  return Discretization{config,           std::move(m), std::move(dofmap), std::move(rule),
-                        std::move(field), scale,        std::move(nl)};
+  dofs::DofMap dofmap(m, dim);  // CG; with [nonlocal], place_alpha sets the CG/DG flags
+  Discretization d{config,           std::move(m), std::move(dofmap), std::move(rule),
+                   std::move(field), scale,        std::move(nl)};
+  if (d.nonlocal) place_alpha(d, make_alpha_field(config), phase, true);
+  return d;
+}
+
+Discretization rebuild_for_alpha(const Discretization& disc, alpha::AlphaField alpha) {
+  PERIMORPH_ASSERT(disc.nonlocal.has_value(), "rebuild_for_alpha needs a discretization with [nonlocal]");
+  Discretization d = disc;
+  place_alpha(
+      d, std::move(alpha), [](const char*) {}, false);
+  return d;
 }
 
 }  // namespace perimorph::setup

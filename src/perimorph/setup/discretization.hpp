@@ -54,4 +54,15 @@ using PhaseCallback = std::function<void(const std::string& phase)>;
 /// quadrature point). `on_phase`, if given, hears each phase begin.
 Discretization build_discretization(const casefile::CaseConfig& config, const PhaseCallback& on_phase = {});
 
+/// The discretization of `disc`'s case with α replaced by `alpha` (THEORY §5:
+/// α grows during a run). Kept: the mesh, the local quadrature, the material
+/// and the calibrated kernel. Rebuilt from the new α: the non-local points,
+/// the cell graph, the morphed C, the CG/DG flags and the dof map. What
+/// outlives it keeps its key: cells, non-local points (their number and
+/// positions per cell do not depend on α) and quadrature points, so a run's
+/// failed bonds (bonds::BrokenBonds) and history carry over; dofs change where
+/// cells switch between CG and DG. Equals build_discretization of the case
+/// with that α. Requires [nonlocal].
+Discretization rebuild_for_alpha(const Discretization& disc, alpha::AlphaField alpha);
+
 }  // namespace perimorph::setup
