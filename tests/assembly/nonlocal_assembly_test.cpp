@@ -48,7 +48,7 @@ TEST(AssemblyNonlocal, OptimizationsDoNotChangeTheMatrix) {
   for (auto edge : {casefile::HorizonEdge::cutoff, casefile::HorizonEdge::partial_volume}) {
     SCOPED_TRACE(edge == casefile::HorizonEdge::cutoff ? "cutoff" : "partial volume");
     const auto m = cut_block(edge);
-    assembly::NonlocalOptions plain{false, false, false}, points{true, false, false}, all{};
+    assembly::NonlocalOptions plain{false, false, false, {}}, points{true, false, false, {}}, all{};
     const Eigen::MatrixXd A = assemble(m, plain), B = assemble(m, points);
     assembly::NonlocalStats stats;
     const Eigen::MatrixXd C = assemble(m, all, &stats);
@@ -71,7 +71,7 @@ TEST(AssemblyNonlocal, BondCountIsWhatTheStiffnessSums) {
     const auto& nl = *m.nonlocal;
     const assembly::NonlocalSpace space{m.mesh, m.dofmap, nl.points, nl.graph, nl.kernel, &nl.alpha, m.scale};
     assembly::NonlocalStats stats;
-    assemble(m, {false, false, false}, &stats);
+    assemble(m, {false, false, false, {}}, &stats);
     const auto count = assembly::count_bonds(space);
     EXPECT_GT(count.bonds, 0u);
     EXPECT_EQ(count.bonds, stats.bonds);

@@ -161,6 +161,7 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
   const std::size_t max_block = static_cast<std::size_t>(2 * peridynamics::max_cell_nodes * D) *
                                 static_cast<std::size_t>(2 * peridynamics::max_cell_nodes * D);
 
+  auto included = [&](Index e, Index f) { return !options.include_pair || options.include_pair(e, f); };
   // Translation cache: one representative pair per distinct key.
   const bool use_cache = options.translation_cache && s.mesh.structure.has_value();
   std::map<OffsetKey, long> cache_index;
@@ -176,7 +177,7 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
   if (use_cache) {
     for (Index e = 0; e < ncells; ++e)
       for (Index f : s.graph.row(e))
-        if (f >= e && cacheable(e, f)) {
+        if (f >= e && included(e, f) && cacheable(e, f)) {
           auto [it, added] = cache_index.emplace(key_of(e, f), static_cast<long>(representatives.size()));
           if (added) representatives.emplace_back(e, f);
         }
@@ -201,7 +202,7 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
       const double amax_e = pts.cell_alpha_max[static_cast<std::size_t>(e)];
       for (Index f : s.graph.row(e)) {
         if (f < e) continue;
-        if (amax_e + pts.cell_alpha_max[static_cast<std::size_t>(f)] <= 0.0) continue;
+        if (amax_e + pts.cell_alpha_max[static_cast<std::size_t>(f)] <= 0.0 || !included(e, f)) continue;
         tasks.push_back({e, f, cacheable(e, f) ? cache_index.at(key_of(e, f)) : -1});
       }
     }

@@ -8,6 +8,7 @@
 #include "perimorph/peridynamics/micromodulus.hpp"
 
 #include <cstddef>
+#include <functional>
 
 namespace perimorph::mesh {
 class Mesh;
@@ -26,19 +27,21 @@ class BrokenBonds;
 
 namespace perimorph::assembly {
 
+/// A view: every reference and pointer is non-owning; the caller keeps what
+/// they refer to alive while the space is used.
 struct NonlocalSpace {
-  const mesh::Mesh& mesh;
-  const dofs::DofMap& dofmap;
-  const bonds::NonlocalPoints& points;
-  const bonds::CellGraph& graph;
-  const peridynamics::Micromodulus& kernel;
-  /// The α field the points were made with. Read only when
+  const mesh::Mesh& mesh;                    ///< non-owning
+  const dofs::DofMap& dofmap;                ///< non-owning
+  const bonds::NonlocalPoints& points;       ///< non-owning
+  const bonds::CellGraph& graph;             ///< non-owning
+  const peridynamics::Micromodulus& kernel;  ///< non-owning
+  /// The α field the points were made with (non-owning). Read only when
   /// NonlocalOptions::precomputed_points is false (then required).
   const alpha::AlphaField* alpha = nullptr;
   /// The factor make_nonlocal_points applied to every weight (thickness in 2D,
   /// cross-section in 1D, 1 in 3D). Read only when precomputed_points is false.
   double scale = 1.0;
-  /// Failed bonds, left out (null: none). Pairs with one are never cached.
+  /// Failed bonds, left out (non-owning; null: none). Pairs with one are never cached.
   const bonds::BrokenBonds* broken = nullptr;
 };
 
@@ -67,6 +70,10 @@ struct NonlocalOptions {
   /// depend only on the cells' relative offset: each distinct block is
   /// computed once and reused.
   bool translation_cache = true;
+  /// Only the cell pairs (e, f), e ≤ f, for which this holds (all if empty):
+  /// the contribution of some cells, for an update in place
+  /// (system::ConstrainedSystem::reassemble).
+  std::function<bool(Index e, Index f)> include_pair;
 };
 
 /// K += K_nl. Pairs whose cells have α ≡ 0 are skipped. Bonds crossing a

@@ -1,6 +1,11 @@
 #include "perimorph/system/constrained_system.hpp"
 
+#include "perimorph/assembly/inserter.hpp"
+#include "perimorph/assembly/local_assembly.hpp"
+#include "perimorph/assembly/nonlocal_assembly.hpp"
 #include "perimorph/core/error.hpp"
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -97,6 +102,88 @@ void ConstrainedSystem::hold(std::span<const Index> dofs, bool zero_rhs) {
   }
   A_.finalize();
   if (zero_rhs) rhs_unit_.set_at(dofs, 0.0);
+}
+
+namespace {
+
+/// Hands each (square) block the assembly adds to ConstrainedSystem::downdate,
+/// with its sign: +1 subtracts it, −1 adds it.
+class DowndateInserter final : public assembly::MatrixInserter {
+ public:
+  DowndateInserter(ConstrainedSystem& system, double sign) : system_(system), sign_(sign) {}
+  void add(std::span<const Index> rows, std::span<const Index> cols,
+           std::span<const double> values) override {
+    PERIMORPH_ASSERT(std::equal(rows.begin(), rows.end(), cols.begin(), cols.end()),
+                     "reassemble takes square blocks over one set of dofs");
+    block_.resize(values.size());
+    for (std::size_t k = 0; k < values.size(); ++k) block_[k] = sign_ * values[k];
+    system_.downdate(rows, block_);
+  }
+
+ private:
+  ConstrainedSystem& system_;  ///< non-owning
+  double sign_;
+  std::vector<double> block_;
+};
+
+/// Adds (sign −1) or subtracts (sign +1) the stiffness `disc` assembles for
+/// the cells flagged in `in`.
+void downdate_cells(ConstrainedSystem& system, const setup::Discretization& disc, const std::vector<char>& in,
+                    const bonds::BrokenBonds* failed, double sign) {
+  DowndateInserter inserter(system, sign);
+  auto flagged = [&](Index c) { return in[static_cast<std::size_t>(c)] != 0; };
+  assembly::assemble_elasticity(disc.local_space(), disc.stiffness, inserter,
+                                [&](Index c) { return flagged(c) && disc.has_local_stiffness(c); });
+  if (!disc.nonlocal) return;
+  const auto& nl = *disc.nonlocal;
+  assembly::NonlocalSpace space{disc.mesh, disc.dofmap, nl.points, nl.graph, nl.kernel};
+  space.broken = failed;
+  assembly::NonlocalOptions options;
+  options.include_pair = [&](Index e, Index f) { return flagged(e) || flagged(f); };
+  assembly::assemble_nonlocal(space, inserter, options);
+}
+
+}  // namespace
+
+void ConstrainedSystem::reassemble(const setup::Discretization& before, const setup::Discretization& after,
+                                   std::span<const Index> cells, const bonds::BrokenBonds* failed) {
+  const Index ncells = before.mesh.num_cells();
+  std::vector<char> in(static_cast<std::size_t>(ncells), 0);
+  for (Index c : cells) in[static_cast<std::size_t>(c)] = 1;
+  if (after.dofmap.num_dofs() != before.dofmap.num_dofs())
+    throw Error(
+        fmt::format("reassemble: the dof map changed ({} → {} dofs, cells switched between CG and "
+                    "DG): build a new constrained system",
+                    before.dofmap.num_dofs(), after.dofmap.num_dofs()));
+  for (Index c : cells) {
+    const auto a = before.dofmap.cell_nodes(c), b = after.dofmap.cell_nodes(c);
+    if (!std::equal(a.begin(), a.end(), b.begin(), b.end()))
+      throw Error(
+          fmt::format("reassemble: cell {} has other dofs in the new discretization (CG ↔ DG): build "
+                      "a new constrained system",
+                      c));
+  }
+  if (after.nonlocal) {
+    PERIMORPH_ASSERT(before.nonlocal.has_value(), "reassemble: a non-local model from a local one");
+    const auto& old_graph = before.nonlocal->graph;
+    const auto& new_graph = after.nonlocal->graph;
+    const auto& amax = after.nonlocal->points.cell_alpha_max;
+    for (Index e = 0; e < ncells; ++e)
+      for (Index f : new_graph.row(e)) {
+        if (f < e || !(in[static_cast<std::size_t>(e)] || in[static_cast<std::size_t>(f)])) continue;
+        if (amax[static_cast<std::size_t>(e)] + amax[static_cast<std::size_t>(f)] <= 0.0) continue;
+        const auto row = old_graph.row(e);
+        if (std::find(row.begin(), row.end(), f) == row.end())
+          throw Error(
+              fmt::format("reassemble: cells {} and {} interact in the new discretization but not in "
+                          "the matrix's pattern: build a new constrained system",
+                          e, f));
+      }
+  }
+  downdate_cells(*this, before, in, failed, 1.0);
+  downdate_cells(*this, after, in, failed, -1.0);
+  finish_downdate();
+  operator_changed();
 }
 
 la::SolveReport ConstrainedSystem::solve(double lambda, la::Vector& u) {

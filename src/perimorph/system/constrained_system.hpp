@@ -18,6 +18,10 @@
 #include <span>
 #include <vector>
 
+namespace perimorph::bonds {
+class BrokenBonds;
+}
+
 namespace perimorph::system {
 
 class ConstrainedSystem {
@@ -54,6 +58,20 @@ class ConstrainedSystem {
   /// diagonal (K unchanged: the spring carries no force); with `zero_rhs` the
   /// right-hand side there is set to 0. A is finalized.
   void hold(std::span<const Index> dofs, bool zero_rhs);
+  /// Replaces the stiffness of `cells` in place (α changed there, THEORY
+  /// §3–§4): subtracts what `before` assembles for them (the local stiffness
+  /// of each cell of `cells`, the bonds of every cell pair with a cell in
+  /// `cells`) and adds what `after` assembles, on K and, as downdate does, on
+  /// A's free rows and columns with the prescribed columns moved to the
+  /// right-hand side; `failed` bonds are left out of both. `cells` must hold
+  /// every cell whose points' α, morphed C or bonds differ between the two.
+  /// Requires the same dof map (a CG ↔ DG switch changes the dofs: build a new
+  /// system then) and every cell pair of `after` touching `cells` in
+  /// `before`'s graph (the matrix pattern); throws Error otherwise. Finalizes
+  /// K and A; the reference diagonal of without_stiffness and hold stays the
+  /// first assembly's. Then operator_changed().
+  void reassemble(const setup::Discretization& before, const setup::Discretization& after,
+                  std::span<const Index> cells, const bonds::BrokenBonds* failed = nullptr);
   /// True if the dof is prescribed.
   bool prescribed(Index dof) const { return !std::isnan(prescribed_[static_cast<std::size_t>(dof)]); }
 
