@@ -186,7 +186,7 @@ def write(results, output):
     w(
         "The loop of `run::run_static` after a solve: *select* (`BondFailure::select(u)`), *apply* "
         "(`BondFailure::apply`: K −= the bonds' blocks, A −= them on free rows and columns, right-hand side "
-        "corrected, both matrices finalized), then `set_operator(A)` and one solve warm-started from u "
+        "corrected, both matrices finalized; then `PartSupport` looks for dofs and parts cut loose), then `set_operator(A)` and one solve warm-started from u "
         "(*solve*: GAMG set-up + CG; *PC set-up* = solve − the same solve again with the preconditioner "
         "kept). A code without the incremental update would instead rebuild the matrices: *full "
         "reassembly* = `assemble_stiffness(model, &broken)` (pattern and matrix creation, local and "
@@ -222,8 +222,9 @@ def write(results, output):
     w("")
     w(
         "`BondFailure::apply` of the k most stretched bonds on fresh copies of K, A and the right-hand side "
-        "(made outside the timed region, with a first apply of no bond, so A's initial diagonal is already "
-        "recorded as after a run's first iteration). ms, and µs per bond in parentheses."
+        "then `PartSupport`'s inspect and apply, as one pass of the run's components (copies made outside "
+        "the timed region; A's initial diagonal is recorded when the system is built). ms, and µs per bond "
+        "in parentheses."
     )
     w("")
     w("| nx | dofs | " + " | ".join(f"k = {k}" for k in COUNTS) + " |")
@@ -270,7 +271,7 @@ def write(results, output):
         "the bonds between adjacent cells). The run calls them once per increment (fields only when a VTU "
         "is written), not per bond-breaking iteration. *floating parts*: `evolution::find_floating_parts` (the "
         "connected parts of the stiffness graph, one intact bond looked for per cell pair, and their free "
-        "rigid-body modes), which `apply` runs only in an iteration where some cell pair lost its last intact "
+        "rigid-body modes), which `PartSupport` runs only in an iteration where some cell pair lost its last intact "
         "bond. ms."
     )
     w("")
