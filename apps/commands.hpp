@@ -1,6 +1,6 @@
 #pragma once
 // The commands of the perimorph program (commands.cpp): each reads a case
-// file, hands it to the driver and prints what it found. main (perimorph.cpp)
+// file, hands it to the library (setup, run, diagnostics) and prints what it found. main (perimorph.cpp)
 // parses the command line and reports errors; these throw perimorph errors.
 
 #include <chrono>

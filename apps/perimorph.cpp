@@ -1,5 +1,6 @@
 // perimorph: the command-line program. A thin layer: parse the command line,
-// read the case file, hand over to the driver, report errors once.
+// read the case file, hand over to the library (setup, run, diagnostics),
+// report errors once.
 //
 //   perimorph check CASE                 validate a case file without running
 //   perimorph info CASE                  calibration and discretization figures
