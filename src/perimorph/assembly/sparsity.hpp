@@ -5,6 +5,7 @@
 
 #include "perimorph/core/types.hpp"
 
+#include <cassert>
 #include <span>
 #include <vector>
 
@@ -23,6 +24,7 @@ struct SparsityPattern {
   std::vector<Index> columns;      ///< sorted within each row, includes the diagonal
   Index num_block_rows() const { return static_cast<Index>(row_offsets.size()) - 1; }
   std::span<const Index> row(Index r) const {
+    assert(r >= 0 && r < num_block_rows());
     return {columns.data() + row_offsets[static_cast<std::size_t>(r)],
             static_cast<std::size_t>(row_offsets[static_cast<std::size_t>(r) + 1] -
                                      row_offsets[static_cast<std::size_t>(r)])};

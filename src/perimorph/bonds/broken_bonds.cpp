@@ -3,6 +3,7 @@
 #include "perimorph/core/error.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <utility>
 
 namespace perimorph::bonds {
@@ -47,6 +48,7 @@ bool BrokenBonds::contains(const BondId& bond) const {
 
 std::span<const std::uint32_t> BrokenBonds::pair(Index e, Index f) const {
   if (by_cell_.empty()) return {};
+  assert(e >= 0 && e <= f && static_cast<std::size_t>(f) < by_cell_.size());
   const auto& row = by_cell_[static_cast<std::size_t>(e)];
   const auto it = row.find(f);
   if (it == row.end()) return {};

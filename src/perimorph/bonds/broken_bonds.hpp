@@ -8,6 +8,7 @@
 
 #include "perimorph/core/types.hpp"
 
+#include <cassert>
 #include <cstdint>
 #include <map>
 #include <span>
@@ -34,7 +35,10 @@ class BrokenBonds {
   /// Sorted codes g · n + h of the broken bonds of the pair (e, f), e ≤ f.
   std::span<const std::uint32_t> pair(Index e, Index f) const;
   /// Any broken bond with a point in cell c.
-  bool touches(Index c) const { return !per_cell_.empty() && per_cell_[static_cast<std::size_t>(c)] > 0; }
+  bool touches(Index c) const {
+    assert(per_cell_.empty() || (c >= 0 && static_cast<std::size_t>(c) < per_cell_.size()));
+    return !per_cell_.empty() && per_cell_[static_cast<std::size_t>(c)] > 0;
+  }
   std::size_t size() const { return count_; }
   bool empty() const { return count_ == 0; }
   int points_per_cell() const { return n_; }

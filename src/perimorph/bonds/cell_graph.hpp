@@ -9,6 +9,7 @@
 
 #include "perimorph/core/types.hpp"
 
+#include <cassert>
 #include <functional>
 #include <span>
 #include <vector>
@@ -25,6 +26,7 @@ struct CellGraph {
 
   Index num_cells() const { return static_cast<Index>(offsets.size()) - 1; }
   std::span<const Index> row(Index c) const {
+    assert(c >= 0 && c < num_cells());
     return {neighbors.data() + offsets[static_cast<std::size_t>(c)],
             static_cast<std::size_t>(offsets[static_cast<std::size_t>(c) + 1] -
                                      offsets[static_cast<std::size_t>(c)])};

@@ -7,6 +7,7 @@
 #include "perimorph/alpha/alpha_field.hpp"
 #include "perimorph/core/types.hpp"
 
+#include <cassert>
 #include <vector>
 
 namespace perimorph::mesh {
@@ -38,6 +39,7 @@ struct NonlocalPoints {
 
   Index num_cells() const { return static_cast<Index>(cell_alpha_max.size()); }
   std::size_t index(Index c, int q) const {
+    assert(c >= 0 && c < num_cells() && q >= 0 && q < per_cell);
     return static_cast<std::size_t>(c) * static_cast<std::size_t>(per_cell) + static_cast<std::size_t>(q);
   }
 };

@@ -11,6 +11,7 @@
 
 #include "perimorph/core/types.hpp"
 
+#include <cassert>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -40,17 +41,27 @@ class DofMap {
   Index owned_offset() const { return 0; }
 
   std::span<const Index> cell_nodes(Index c) const {
+    assert(c >= 0 && c < num_cells());
     return {cell_nodes_.data() + offsets_[static_cast<std::size_t>(c)],
             static_cast<std::size_t>(offsets_[static_cast<std::size_t>(c) + 1] -
                                      offsets_[static_cast<std::size_t>(c)])};
   }
   Index num_cells() const { return static_cast<Index>(offsets_.size()) - 1; }
-  Continuity continuity(Index c) const { return continuity_[static_cast<std::size_t>(c)]; }
-  const Vec3& node_coordinate(Index n) const { return node_coords_[static_cast<std::size_t>(n)]; }
+  Continuity continuity(Index c) const {
+    assert(c >= 0 && static_cast<std::size_t>(c) < continuity_.size());
+    return continuity_[static_cast<std::size_t>(c)];
+  }
+  const Vec3& node_coordinate(Index n) const {
+    assert(n >= 0 && n < num_nodes());
+    return node_coords_[static_cast<std::size_t>(n)];
+  }
   const std::vector<Vec3>& node_coordinates() const { return node_coords_; }
   /// Mesh node this dof node copies (CG: itself; DG: the vertex it
   /// duplicates; DG degree 0: -1, the node is a cell centroid).
-  Index mesh_node(Index n) const { return mesh_node_[static_cast<std::size_t>(n)]; }
+  Index mesh_node(Index n) const {
+    assert(n >= 0 && static_cast<std::size_t>(n) < mesh_node_.size());
+    return mesh_node_[static_cast<std::size_t>(n)];
+  }
   /// Dof nodes that copy the given mesh nodes (one for CG, one per DG cell touching it, ...).
   std::vector<Index> dof_nodes_of_mesh_nodes(std::span<const Index> mesh_nodes) const;
   /// Every dof node of the given cells, sorted and unique.

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include <cassert>
 #include <span>
 #include <vector>
 
@@ -31,6 +32,7 @@ class ConstitutiveField {
 
   /// Column-major nv × nv tensor at point q of cell c.
   const double* at(Index c, int q) const {
+    assert(c >= 0 && c < num_cells() && q >= 0 && q < npts_);
     const auto k = static_cast<std::size_t>(first_[static_cast<std::size_t>(c)] +
                                             (per_point_[static_cast<std::size_t>(c)] ? q : 0));
     return data_.data() + k * static_cast<std::size_t>(nv_ * nv_);

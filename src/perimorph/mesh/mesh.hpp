@@ -8,6 +8,7 @@
 #include "perimorph/mesh/cell_type.hpp"
 
 #include <array>
+#include <cassert>
 #include <map>
 #include <optional>
 #include <span>
@@ -47,9 +48,13 @@ class Mesh {
     return static_cast<Index>(cells_.size() / static_cast<std::size_t>(nodes_per_cell()));
   }
 
-  const Vec3& node(Index n) const { return nodes_[static_cast<std::size_t>(n)]; }
+  const Vec3& node(Index n) const {
+    assert(n >= 0 && n < num_nodes());
+    return nodes_[static_cast<std::size_t>(n)];
+  }
   const std::vector<Vec3>& nodes() const { return nodes_; }
   std::span<const Index> cell(Index c) const {
+    assert(c >= 0 && c < num_cells());
     return {cells_.data() + static_cast<std::size_t>(c) * static_cast<std::size_t>(nodes_per_cell()),
             static_cast<std::size_t>(nodes_per_cell())};
   }
@@ -79,6 +84,7 @@ class Mesh {
   // Mutation used by the pre-crack splitter.
   Index add_node(const Vec3& x);
   void set_cell_node(Index c, int local, Index node) {
+    assert(c >= 0 && c < num_cells() && local >= 0 && local < nodes_per_cell());
     cells_[static_cast<std::size_t>(c) * static_cast<std::size_t>(nodes_per_cell()) +
            static_cast<std::size_t>(local)] = node;
   }
