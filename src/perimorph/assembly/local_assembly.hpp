@@ -24,10 +24,11 @@ class ConstitutiveField;
 
 namespace perimorph::assembly {
 
-/// What the local loops need to know about the discretization.
+/// What the local loops need to know about the discretization. A view: the
+/// references and the span are non-owning.
 struct LocalSpace {
-  const mesh::Mesh& mesh;
-  const dofs::DofMap& dofmap;
+  const mesh::Mesh& mesh;                      ///< non-owning
+  const dofs::DofMap& dofmap;                  ///< non-owning
   std::span<const fem::QuadraturePoint> rule;  ///< reference-cell rule (matches the ConstitutiveField)
   double scale = 1.0;                          ///< thickness in 2D, cross-section area in 1D, 1 in 3D
 };

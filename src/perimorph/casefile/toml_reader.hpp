@@ -64,8 +64,8 @@ class Value {
  private:
   const toml::array& array() const;
 
-  const std::string* file_;
-  const toml::node* node_;
+  const std::string* file_;  ///< non-owning: the case file's text
+  const toml::node* node_;   ///< non-owning: in the parsed document
   std::string path_;
 };
 
@@ -100,8 +100,8 @@ class Table {
                   const std::vector<std::pair<std::string, std::string>>& hints = {}) const;
 
  private:
-  const std::string* file_;
-  const toml::table* table_;
+  const std::string* file_;   ///< non-owning: the case file's text
+  const toml::table* table_;  ///< non-owning: in the parsed document
   std::string path_;
 };
 

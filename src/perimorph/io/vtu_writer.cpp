@@ -55,7 +55,7 @@ class Base64Encoder {
     pending_ = 0;
   }
 
-  std::string& out_;
+  std::string& out_;  ///< non-owning: the caller's output string
   std::array<std::uint8_t, 3> group_{};
   std::size_t pending_ = 0;
 };

@@ -36,7 +36,7 @@ class LinearSolver {
 
  private:
   PetscKspHandle ksp_ = nullptr;
-  const Matrix* A_ = nullptr;
+  const Matrix* A_ = nullptr;  ///< non-owning: the operator of set_operator, kept alive by the caller
 };
 
 }  // namespace perimorph::la

@@ -74,7 +74,8 @@ class Matrix final : public assembly::MatrixInserter {
 
  private:
   explicit Matrix(PetscMatHandle m);
-  /// The CSR arrays held by add() between other operations.
+  /// The CSR arrays held by add() between other operations (non-owning:
+  /// PETSc's own arrays, borrowed until release_view).
   struct CsrView {
     const Index* ia = nullptr;
     const Index* ja = nullptr;

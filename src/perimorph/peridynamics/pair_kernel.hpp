@@ -23,7 +23,8 @@
 
 namespace perimorph::peridynamics {
 
-/// The quadrature points of one cell, as the kernel sees them.
+/// The quadrature points of one cell, as the kernel sees them. A view: the
+/// pointers are non-owning (into NonlocalPoints or a caller's buffer).
 struct CellPoints {
   const Vec3* x = nullptr;
   const double* weight = nullptr;
