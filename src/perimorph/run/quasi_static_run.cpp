@@ -161,7 +161,11 @@ bool QuasiStaticRun::evolve() {
       if (rec_.break_iterations == disc_.config.fracture.max_iterations) stop_unsettled(proposal.changes);
       ++rec_.break_iterations;
     }
-    component->apply(state_, *system_);
+    const evolution::Effect effect = component->apply(state_, *system_);
+    // The loop hands a changed A to the solver; a rebuilt discretization (new
+    // dofs) needs a new system and a carried-over state, which it cannot do yet.
+    PERIMORPH_ASSERT(effect != evolution::Effect::rebuild,
+                     "an evolution component rebuilt the discretization: the run loop does not rebuild yet");
     changed = true;
   }
   if (!changed) return false;
