@@ -39,10 +39,9 @@ bool for_each_bond_of_pair(const NonlocalSpace& s, Index e, Index f, Visit&& vis
       if (!peridynamics::within_reach(r2, reach2)) continue;
       const double abar = 0.5 * (pts.alpha[kg] + pts.alpha[kh]);
       if (abar == 0.0) continue;
-      const double cb = peridynamics::pair_bond<D>(s.kernel, pts.x[kg], pts.x[kh], xi, r2,
-                                                   partial ? &pts.half[kg] : nullptr,
-                                                   partial ? &pts.half[kh] : nullptr, s.mesh.cuts)
-                            .c_bond;
+      const double cb = peridynamics::uncut_bond_micromodulus<D>(
+          s.kernel, pts.x[kg], pts.x[kh], xi, r2, partial ? &pts.half[kg] : nullptr,
+          partial ? &pts.half[kh] : nullptr, s.mesh.cuts);
       if (cb == 0.0) continue;
       const bool failed = !broken.empty() && std::binary_search(broken.begin(), broken.end(),
                                                                 static_cast<std::uint32_t>(g * n + h));

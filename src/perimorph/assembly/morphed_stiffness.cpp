@@ -67,10 +67,9 @@ Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const
       if (!peridynamics::within_reach(r2, reach2)) continue;
       const Vec3* hg = partial ? &half_g : nullptr;
       const Vec3* hh = partial ? &points.half[k] : nullptr;
-      const double cb =
-          dispatch_dim(dim, [&](auto D) {
-            return peridynamics::pair_bond<D()>(kernel, xg, points.x[k], xi, r2, hg, hh, mesh.cuts);
-          }).c_bond;
+      const double cb = dispatch_dim(dim, [&](auto D) {
+        return peridynamics::uncut_bond_micromodulus<D()>(kernel, xg, points.x[k], xi, r2, hg, hh, mesh.cuts);
+      });
       if (cb == 0.0) continue;
       const double s = points.weight[k] * cb * 0.5 * da / (2.0 * r2);
       for (int a = 0; a < nv; ++a)

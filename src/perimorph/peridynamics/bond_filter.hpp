@@ -61,6 +61,19 @@ inline double bond_reach_squared(double horizon, bool partial, double half_sum) 
   return partial ? outer * outer : horizon_cutoff_squared(horizon);
 }
 
+/// c_bond of the pair x_g–x_h (ξ = x_h − x_g, |ξ|² = r2, 0 < r2 < reach²),
+/// 0 if a cut crosses it or it is no bond: the same value as
+/// pair_bond(...).c_bond, with the cut tested first. The crossing test is
+/// cheaper than the micromodulus (an exp for the exponential and gaussian
+/// kernels), and near a pre-crack many pairs cross it: the loops that need
+/// only c_bond (pair kernel, stretch pass, morphed C) use this order.
+template <int D>
+double uncut_bond_micromodulus(const Micromodulus& c, const Vec3& xg, const Vec3& xh, const Vec3& xi,
+                               double r2, const Vec3* half_g, const Vec3* half_h, std::span<const Cut> cuts) {
+  if (!cuts.empty() && bond_cut(xg, xh, cuts)) return 0.0;
+  return bond_micromodulus<D>(c, xi, r2, half_g, half_h);
+}
+
 /// The filter's verdict on one pair: c_bond > 0 for a bond, else 0; `cut` is
 /// set when the pair would be a bond but a cut crosses it.
 struct PairBond {

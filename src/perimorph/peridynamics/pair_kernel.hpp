@@ -82,9 +82,8 @@ std::size_t pair_stiffness(const CellPoints& E, const CellPoints& F, bool same_c
         continue;
       const double abar = unit_alpha ? 1.0 : 0.5 * (E.alpha[g] + F.alpha[h]);
       if (abar == 0.0) continue;
-      const double cb = pair_bond<D>(c, xg, F.x[h], xi, r2, partial ? E.half + g : nullptr,
-                                     partial ? F.half + h : nullptr, cuts)
-                            .c_bond;
+      const double cb = uncut_bond_micromodulus<D>(c, xg, F.x[h], xi, r2, partial ? E.half + g : nullptr,
+                                                   partial ? F.half + h : nullptr, cuts);
       if (cb == 0.0) continue;
       const double k = E.weight[g] * F.weight[h] * abar * cb / r2;  // G = ξξᵀ/r²
       ++bonds;
