@@ -25,10 +25,7 @@ BondFailure::BondFailure(const setup::Discretization& disc)
 }
 
 assembly::NonlocalSpace BondFailure::space(const RunState& state) const {
-  const auto& nl = *disc_.nonlocal;
-  assembly::NonlocalSpace s{disc_.mesh, disc_.dofmap, nl.points, nl.graph, nl.kernel};
-  s.broken = &state.failed;
-  return s;
+  return disc_.nonlocal_space(&state.failed);
 }
 
 Proposal BondFailure::inspect(const RunState& state, const system::ConstrainedSystem& /*system*/) {

@@ -37,9 +37,7 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
   // A cell pair that lost its last intact bond may have cut a part free
   // (floating_parts.hpp). The bonds fail grouped by cell pair: each pair is
   // looked at once.
-  const auto& nl = *disc_.nonlocal;
-  assembly::NonlocalSpace space{disc_.mesh, disc_.dofmap, nl.points, nl.graph, nl.kernel};
-  space.broken = &state.failed;
+  const assembly::NonlocalSpace space = disc_.nonlocal_space(&state.failed);
   bool separated = false;
   for (std::size_t k = first; k < seen_ && !separated; ++k) {
     const auto& id = state.failed_in_order[k];

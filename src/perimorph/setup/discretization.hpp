@@ -4,6 +4,7 @@
 // quadrature point. This is where typed case data meets the pipeline stages.
 
 #include "perimorph/assembly/local_assembly.hpp"
+#include "perimorph/assembly/nonlocal_assembly.hpp"
 #include "perimorph/casefile/case_config.hpp"
 #include "perimorph/dofs/dof_map.hpp"
 #include "perimorph/fem/constitutive_field.hpp"
@@ -29,6 +30,12 @@ struct Discretization {
 
   int dim() const { return mesh.dim(); }
   assembly::LocalSpace local_space() const { return {mesh, dofmap, rule, scale}; }
+  /// The non-local space (requires [nonlocal]), `failed` bonds left out (null: none).
+  assembly::NonlocalSpace nonlocal_space(const bonds::BrokenBonds* failed = nullptr) const {
+    assembly::NonlocalSpace s{mesh, dofmap, nonlocal->points, nonlocal->graph, nonlocal->kernel};
+    s.broken = failed;
+    return s;
+  }
   /// True if cell c carries local stiffness (not purely non-local).
   bool has_local_stiffness(Index c) const {
     return !nonlocal || !nonlocal->morph.purely_nonlocal[static_cast<std::size_t>(c)];

@@ -135,9 +135,7 @@ void downdate_cells(ConstrainedSystem& system, const setup::Discretization& disc
   assembly::assemble_elasticity(disc.local_space(), disc.stiffness, inserter,
                                 [&](Index c) { return flagged(c) && disc.has_local_stiffness(c); });
   if (!disc.nonlocal) return;
-  const auto& nl = *disc.nonlocal;
-  assembly::NonlocalSpace space{disc.mesh, disc.dofmap, nl.points, nl.graph, nl.kernel};
-  space.broken = failed;
+  const assembly::NonlocalSpace space = disc.nonlocal_space(failed);
   assembly::NonlocalOptions options;
   options.include_pair = [&](Index e, Index f) { return flagged(e) || flagged(f); };
   assembly::assemble_nonlocal(space, inserter, options);
