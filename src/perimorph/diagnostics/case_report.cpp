@@ -119,7 +119,7 @@ std::string info_report(const setup::Discretization& model, const std::string& p
           : (config.nonlocal.discretization == casefile::Discretization::discontinuous
                  ? " (DG cells)"
                  : " (DG degree 0 cells)"));
-  const assembly::NonlocalSpace space{model.mesh, model.dofmap, nl.points, nl.graph, nl.kernel};
+  const assembly::NonlocalSpace space = model.nonlocal_space();
   const auto count = assembly::count_bonds(space);
   fmt::format_to(
       out,

@@ -19,9 +19,7 @@ AssembledStiffness assemble_stiffness(const setup::Discretization& model, const 
   out.local_seconds = seconds(t0);
   if (model.nonlocal) {
     t0 = clock::now();
-    const auto& nl = *model.nonlocal;
-    assembly::NonlocalSpace space{model.mesh, model.dofmap, nl.points, nl.graph, nl.kernel};
-    space.broken = broken;
+    const assembly::NonlocalSpace space = model.nonlocal_space(broken);
     out.nonlocal = assembly::assemble_nonlocal(space, out.K);
     out.nonlocal_seconds = seconds(t0);
   }
