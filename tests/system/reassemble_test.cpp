@@ -9,6 +9,7 @@
 #include "perimorph/setup/discretization.hpp"
 #include "perimorph/setup/nonlocal_setup.hpp"
 #include "perimorph/system/constrained_system.hpp"
+#include "perimorph/system/remodel.hpp"
 #include "perimorph/system/stiffness.hpp"
 #include "support/fracture_cases.hpp"
 
@@ -34,24 +35,6 @@ system::ConstrainedSystem make_system(const setup::Discretization& d, const bond
                                    setup::build_external_force(d));
 }
 
-/// The cells where the two discretizations differ: α at a non-local point,
-/// the morphed C at a local point, or the purely non-local flag.
-std::vector<Index> changed_cells(const setup::Discretization& a, const setup::Discretization& b) {
-  std::vector<Index> out;
-  const auto& pa = a.nonlocal->points;
-  const auto& pb = b.nonlocal->points;
-  for (Index c = 0; c < a.mesh.num_cells(); ++c) {
-    bool differs = a.nonlocal->morph.purely_nonlocal[static_cast<std::size_t>(c)] !=
-                   b.nonlocal->morph.purely_nonlocal[static_cast<std::size_t>(c)];
-    for (int q = 0; q < pa.per_cell && !differs; ++q)
-      differs = pa.alpha[pa.index(c, q)] != pb.alpha[pb.index(c, q)];
-    for (int q = 0; q < a.stiffness.points_per_cell() && !differs; ++q)
-      differs = a.stiffness.matrix(c, q) != b.stiffness.matrix(c, q);
-    if (differs) out.push_back(c);
-  }
-  return out;
-}
-
 TEST(Reassemble, CellsWhereAlphaChangedGiveTheNewSystem) {
   // The same support of α (0.75 ≤ x ≤ 3.25), a narrower α = 1 core: the same
   // cell graph and dofs, other point α and morphed C.
@@ -59,7 +42,7 @@ TEST(Reassemble, CellsWhereAlphaChangedGiveTheNewSystem) {
   const auto after_case = strip(1.6, 2.4, 0.85);
   const auto after = setup::rebuild_for_alpha(before, setup::make_alpha_field(after_case));
   ASSERT_EQ(after.dofmap.num_dofs(), before.dofmap.num_dofs());
-  const std::vector<Index> cells = changed_cells(before, after);
+  const std::vector<Index> cells = system::changed_cells(before, after);
   std::printf("%zu of %d cells changed\n", cells.size(), before.mesh.num_cells());
   ASSERT_GT(cells.size(), 0u);
   ASSERT_LT(cells.size(), static_cast<std::size_t>(before.mesh.num_cells())) << "not a local update";

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace perimorph::alpha {
 
@@ -74,6 +75,14 @@ AlphaField AlphaField::regions(std::vector<Region> regions, int dim) {
   }
   f.regions_ = std::move(regions);
   return f;
+}
+
+AlphaField AlphaField::grown(std::vector<Region> added, int dim) const {
+  PERIMORPH_ASSERT(!is_constant() || constant_ == 0.0, "a constant alpha > 0 cannot grow by regions");
+  if (added.empty()) return *this;
+  std::vector<Region> all = regions_;
+  all.insert(all.end(), std::make_move_iterator(added.begin()), std::make_move_iterator(added.end()));
+  return regions(std::move(all), is_constant() ? dim : dim_);
 }
 
 double region_value(const Region& r, const Vec3& x, int dim) {

@@ -68,6 +68,11 @@ class AlphaField {
   /// α = max over the regions (0 outside all of them).
   static AlphaField regions(std::vector<Region> regions, int dim);
 
+  /// This field with `added` regions joined (pointwise max): α never
+  /// decreases (THEORY §5, adaptive zone). α ≡ 0 grows into the regions; a
+  /// constant α > 0 cannot grow (an error).
+  AlphaField grown(std::vector<Region> added, int dim) const;
+
   double operator()(const Vec3& x) const;
   bool is_constant() const { return regions_.empty(); }
   /// The regions as given to regions(), normals and axes normalized.

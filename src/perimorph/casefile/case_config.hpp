@@ -4,6 +4,7 @@
 // passed validation when a CaseConfig exists: later stages may rely on it.
 // The format is documented in docs/case-file.md.
 
+#include "perimorph/core/hole.hpp"
 #include "perimorph/core/types.hpp"
 
 #include <array>
@@ -40,8 +41,22 @@ struct CutSpec {
   SourceLocation where;
 };
 
+/// [[mesh.hole]]: the cells whose centroid lies strictly inside the shape are
+/// removed. disk (2D): center, radius; ball (3D): center, radius; cylinder
+/// (3D, axis along z through center): center, radius; box (any dim): lower,
+/// upper (upper > lower).
+struct HoleSpec {
+  HoleShape shape = HoleShape::disk;
+  Vec3 center = Vec3::Zero();
+  double radius = 0.0;
+  Vec3 lower = Vec3::Zero();
+  Vec3 upper = Vec3::Zero();
+  SourceLocation where;
+};
+
 struct MeshSpec {
   BoxMesh box;
+  std::vector<HoleSpec> holes;
   std::vector<CutSpec> cuts;
 };
 
@@ -268,6 +283,34 @@ struct FractureSpec {
   SourceLocation where;  ///< the [fracture] header
 };
 
+/// Where the adaptive step grows α (THEORY §5): after the bond-breaking loop
+/// of an increment has settled (the thesis' choice), or after every
+/// bond-breaking iteration.
+enum class AdaptivityUpdate { increment, iteration };
+
+/// [adaptivity]: the non-local zone grows with the crack (THEORY §5, thesis
+/// §3.3.4). Every cell holding a newly failed bond adds a ball (disk in 2D)
+/// centred on its centroid: α = 1 to radius h_e + core, falling by `profile`
+/// to 0 at h_e + core + transition (h_e the cell's longest edge); α never
+/// decreases. With the predictor, a cell not yet at α = 1 whose strain
+/// stretches some direction beyond theta · s_crit gets its ball before any of
+/// its bonds fails. Needs [nonlocal] and [fracture]; parsed by
+/// parse_adaptivity.cpp; `where` is the [adaptivity] header.
+struct AdaptivitySpec {
+  bool enabled = false;      ///< the section is present and enabled ≠ false
+  double core = -1.0;        ///< ≥ 0; default (negative here): the horizon δ
+  double transition = -1.0;  ///< ≥ 0; default (negative here): the horizon δ
+  AlphaProfile profile = AlphaProfile::cubic;
+  AdaptivityUpdate update = AdaptivityUpdate::increment;
+  /// After α grew at the end of an increment: re-solve at the same load and
+  /// run the bond-breaking loop again on the grown model (true), or go on to
+  /// the next increment with it (false).
+  bool redo = true;
+  bool predictor = false;
+  double theta = 0.8;  ///< predictor threshold, 0 < theta ≤ 1, of s_crit
+  SourceLocation where;
+};
+
 struct CaseConfig {
   std::string path;   ///< the case file as given
   std::string title;  ///< optional [case] title
@@ -284,6 +327,7 @@ struct CaseConfig {
   NonlocalSpec nonlocal;
   AlphaSpec alpha;
   FractureSpec fracture;
+  AdaptivitySpec adaptivity;
   int dim() const { return mesh.box.dim; }
 };
 

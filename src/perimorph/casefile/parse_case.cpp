@@ -6,6 +6,8 @@
 
 #include "perimorph/casefile/parse_case.hpp"
 
+#include "perimorph/casefile/choose_option.hpp"
+#include "perimorph/casefile/parse_adaptivity.hpp"
 #include "perimorph/casefile/parse_fracture.hpp"
 #include "perimorph/casefile/parse_material.hpp"
 #include "perimorph/casefile/parse_nonlocal.hpp"
@@ -119,13 +121,65 @@ CutSpec read_cut(const Table& t, const BoxMesh& box) {
   return cut;
 }
 
+const detail::Options<HoleShape> kHoleShapes{{"disk", HoleShape::disk},
+                                             {"ball", HoleShape::ball},
+                                             {"cylinder", HoleShape::cylinder},
+                                             {"box", HoleShape::box}};
+
+/// What a hole of `shape` takes, for messages.
+std::string hole_takes(HoleShape shape, int dim) {
+  constexpr const char* forms[3] = {"[x]", "[x, y]", "[x, y, z]"};
+  const char* v = forms[dim - 1];
+  switch (shape) {
+    case HoleShape::disk:
+      return fmt::format("a disk takes center = {} and radius", v);
+    case HoleShape::ball:
+      return fmt::format("a ball takes center = {} and radius", v);
+    case HoleShape::cylinder:
+      return fmt::format("a cylinder (axis along z) takes center = {} and radius", v);
+    case HoleShape::box:
+      return fmt::format("a box takes lower = {} and upper = {}", v, v);
+  }
+  return {};
+}
+
+HoleSpec read_hole(const Table& t, int dim) {
+  // Every key of every shape first, so that a misspelt key gets a suggestion.
+  const std::vector<std::string> every{"shape", "center", "radius", "lower", "upper"};
+  t.check_keys(every);
+  HoleSpec h;
+  h.where = t.where();
+  const Value shape =
+      t.require("shape", "the hole's shape: \"disk\" (2D), \"ball\" (3D), \"cylinder\" (3D) or \"box\"");
+  h.shape = detail::choose(shape, kHoleShapes, "hole shape");
+  const std::string others = dim == 2   ? "\"disk\" or \"box\""
+                             : dim == 3 ? "\"ball\", \"cylinder\" or \"box\""
+                                        : "\"box\"";
+  if (h.shape == HoleShape::disk && dim != 2)
+    shape.fail(
+        fmt::format("\"disk\" is a 2D shape, but mesh.dim = {}; {} use {}", dim, for_dim(dim), others));
+  if ((h.shape == HoleShape::ball || h.shape == HoleShape::cylinder) && dim != 3)
+    shape.fail(fmt::format("{:?} is a 3D shape, but mesh.dim = {}; {} use {}", shape.string(), dim,
+                           for_dim(dim), others));
+  const std::string takes = hole_takes(h.shape, dim);
+  if (h.shape == HoleShape::box) {
+    t.check_keys({"shape", "lower", "upper"}, {{"center", takes}, {"radius", takes}});
+    read_box(t, dim, h.lower, h.upper);
+  } else {
+    t.check_keys({"shape", "center", "radius"}, {{"lower", takes}, {"upper", takes}});
+    h.center = t.require("center", takes).vector(dim, for_dim(dim));
+    h.radius = positive(t.require("radius", takes), "the hole's radius");
+  }
+  return h;
+}
+
 void read_mesh(const Table& root, CaseConfig& c) {
   const auto mesh = root.table("mesh");
   if (!mesh)
     root.fail(
         "missing required table [mesh] (keys type = \"box\", dim, lower, upper, cells); see "
         "docs/case-file.md");
-  mesh->check_keys({"type", "dim", "lower", "upper", "cells", "cut"});
+  mesh->check_keys({"type", "dim", "lower", "upper", "cells", "hole", "cut"});
   if (auto v = mesh->get("type")) {
     const std::string type = v->string();
     if (type != "box")
@@ -159,6 +213,7 @@ void read_mesh(const Table& root, CaseConfig& c) {
                     "(32-bit indices)",
                     nodes, nodes * dim, kMaxInt));
 
+  for (const Table& t : mesh->tables("hole")) c.mesh.holes.push_back(read_hole(t, dim));
   for (const Table& t : mesh->tables("cut")) c.mesh.cuts.push_back(read_cut(t, box));
 }
 
@@ -321,7 +376,7 @@ CaseConfig parse_case_string(std::string_view toml_text, const std::string& pret
   }
   const Table root(pretend_path, doc, "");
   root.check_keys({"case", "mesh", "region", "node_set", "model", "material", "dirichlet", "traction",
-                   "loading", "solver", "output", "nonlocal", "alpha", "fracture"});
+                   "loading", "solver", "output", "nonlocal", "alpha", "fracture", "adaptivity"});
   CaseConfig c;
   c.path = pretend_path;
   read_case(root, c);
@@ -334,6 +389,7 @@ CaseConfig parse_case_string(std::string_view toml_text, const std::string& pret
   detail::read_nonlocal(root, c);
   detail::read_alpha(root, c);
   detail::read_fracture(root, c);
+  detail::read_adaptivity(root, c);
   read_boundary(root, c);
   detail::read_loading(root, c);
   detail::read_solver(root, c);

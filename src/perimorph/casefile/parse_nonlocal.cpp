@@ -4,6 +4,7 @@
 
 #include "perimorph/casefile/parse_nonlocal.hpp"
 
+#include "perimorph/casefile/choose_option.hpp"
 #include "perimorph/casefile/suggest.hpp"
 
 #include <fmt/format.h>
@@ -20,9 +21,6 @@
 namespace perimorph::casefile::detail {
 
 namespace {
-
-template <class Enum>
-using Options = std::vector<std::pair<std::string, Enum>>;
 
 const Options<KernelKind> kKernels{{"constant", KernelKind::constant},
                                    {"conical", KernelKind::conical},
@@ -42,8 +40,7 @@ const Options<AlphaShapeKind> kShapes{{"interval", AlphaShapeKind::interval},
                                       {"ball", AlphaShapeKind::ball},
                                       {"cylinder", AlphaShapeKind::cylinder},
                                       {"box", AlphaShapeKind::box}};
-const Options<AlphaProfile> kProfiles{
-    {"heaviside", AlphaProfile::heaviside}, {"linear", AlphaProfile::linear}, {"cubic", AlphaProfile::cubic}};
+const Options<AlphaProfile>& kProfiles = profile_options();
 
 std::string for_dim(int dim) {
   return fmt::format("for dim = {}", dim);
@@ -58,23 +55,6 @@ std::string point(const Vec3& v, int n) {
 std::string vector_form(int dim) {
   constexpr const char* forms[3] = {"[x]", "[x, y]", "[x, y, z]"};
   return forms[dim - 1];
-}
-
-/// The option named by the string `v`; otherwise fails with "did you mean"
-/// the closest option (if any) and the list of options.
-template <class Enum>
-Enum choose(const Value& v, const Options<Enum>& options, std::string_view what) {
-  const std::string given = v.string();
-  std::vector<std::string> names, quoted;
-  for (const auto& [name, option] : options) {
-    if (name == given) return option;
-    names.push_back(name);
-    quoted.push_back(fmt::format("{:?}", name));
-  }
-  const std::string close = closest_match(given, names);
-  v.fail(fmt::format("unknown {} {:?}; {}allowed: {}", what, given,
-                     close.empty() ? "" : fmt::format("did you mean {:?}? ", close),
-                     fmt::join(quoted, ", ")));
 }
 
 double positive(const Value& v, std::string_view what) {

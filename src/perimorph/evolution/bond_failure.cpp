@@ -17,7 +17,7 @@
 namespace perimorph::evolution {
 
 BondFailure::BondFailure(const setup::Discretization& disc)
-    : disc_(disc), s_crit_(setup::critical_stretch(disc)) {
+    : disc_(&disc), s_crit_(setup::critical_stretch(disc)) {
   const auto& regions = disc.config.fracture.no_fail;
   if (!regions.empty()) no_fail_.assign(static_cast<std::size_t>(disc.mesh.num_cells()), 0);
   for (const std::string& region : regions)
@@ -25,7 +25,7 @@ BondFailure::BondFailure(const setup::Discretization& disc)
 }
 
 assembly::NonlocalSpace BondFailure::space(const RunState& state) const {
-  return disc_.nonlocal_space(&state.failed);
+  return disc_->nonlocal_space(&state.failed);
 }
 
 Proposal BondFailure::inspect(const RunState& state, const system::ConstrainedSystem& /*system*/) {
@@ -40,7 +40,7 @@ Effect BondFailure::apply(RunState& state, system::ConstrainedSystem& system) {
 
 std::vector<assembly::StretchedBond> BondFailure::select(const RunState& state) const {
   std::vector<assembly::StretchedBond> over = assembly::bonds_over(space(state), state.u, s_crit_);
-  const auto& spec = disc_.config.fracture;
+  const auto& spec = disc_->config.fracture;
   std::erase_if(over, [&](const assembly::StretchedBond& b) {
     if (!spec.intra_cell_failure && b.id.e == b.id.f) return true;
     return !no_fail_.empty() &&
@@ -57,9 +57,9 @@ std::vector<assembly::StretchedBond> BondFailure::select(const RunState& state) 
 
 FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, RunState& state,
                                  system::ConstrainedSystem& system) const {
-  const int dim = disc_.dim();
-  const auto& pts = disc_.nonlocal->points;
-  const auto& dm = disc_.dofmap;
+  const int dim = disc_->dim();
+  const auto& pts = disc_->nonlocal->points;
+  const auto& dm = disc_->dofmap;
   const std::vector<double> ones{1.0};
   std::vector<double> block;
   std::vector<Index> dofs;
@@ -99,9 +99,9 @@ FractureFields BondFailure::fields(const RunState& state) const {
   FractureFields out;
   out.dissipated = state.cell_dissipated;
   const auto w = assembly::point_bond_weights(space(state));
-  const auto& pts = disc_.nonlocal->points;
+  const auto& pts = disc_->nonlocal->points;
   out.damage.assign(state.cell_dissipated.size(), 0.0);
-  for (Index c = 0; c < disc_.mesh.num_cells(); ++c) {
+  for (Index c = 0; c < disc_->mesh.num_cells(); ++c) {
     double d = 0.0;
     for (int q = 0; q < pts.per_cell; ++q) {
       const std::size_t k = pts.index(c, q);
@@ -114,15 +114,15 @@ FractureFields BondFailure::fields(const RunState& state) const {
 
 CrackArea BondFailure::crack_area(const RunState& state) const {
   CrackArea out;
-  if (!disc_.mesh.structure) {
+  if (!disc_->mesh.structure) {
     out.total = out.projected = std::nan("");
     return out;
   }
-  const auto& layout = *disc_.mesh.structure;
+  const auto& layout = *disc_->mesh.structure;
   const Vec3& h = layout.spacing;
-  const int dim = disc_.dim();
+  const int dim = disc_->dim();
   auto face_area = [&](int axis) {
-    double a = disc_.scale;  // thickness (2D), cross-section (1D), 1 (3D)
+    double a = disc_->scale;  // thickness (2D), cross-section (1D), 1 (3D)
     for (int d = 0; d < dim; ++d)
       if (d != axis) a *= h[d];
     return a;

@@ -54,6 +54,10 @@ class BondFailure final : public Component {
   Proposal inspect(const RunState& state, const system::ConstrainedSystem& system) override;
   /// Breaks the proposed bonds (apply below); Effect::downdate.
   Effect apply(RunState& state, system::ConstrainedSystem& system) override;
+  void rebind(const setup::Discretization& disc, RunState& /*state*/,
+              system::ConstrainedSystem& /*system*/) override {
+    disc_ = &disc;
+  }
 
   /// The bonds proposed by the last inspect (what the last apply broke).
   const std::vector<assembly::StretchedBond>& proposed() const { return proposed_; }
@@ -88,7 +92,7 @@ class BondFailure final : public Component {
   CrackArea crack_area(const RunState& state) const;
 
  private:
-  const setup::Discretization& disc_;  ///< non-owning; outlives the component
+  const setup::Discretization* disc_;  ///< non-owning: the run's current discretization
   double s_crit_ = 0.0;
   std::vector<char> no_fail_;  ///< per cell, 1 in a no_fail region; empty when there is none
   std::vector<assembly::StretchedBond> proposed_;

@@ -21,7 +21,8 @@ enum class Effect {
   downdate,    ///< blocks subtracted from K and A (ConstrainedSystem::downdate)
   hold,        ///< springs on A's diagonal (ConstrainedSystem::hold)
   reassemble,  ///< the stiffness of some cells recomputed
-  rebuild,     ///< the discretization rebuilt (dofs changed)
+  rebuild,     ///< the state's α grew: the run rebuilds the discretization and the system, then
+               ///< re-solves before any other component inspects (Component::rebind)
 };
 
 /// A proposed change: how many things it changes (bonds, dofs, cells); 0 is
@@ -44,6 +45,12 @@ class Component {
   /// The caller hands the changed operator to the solver once all components
   /// have applied (ConstrainedSystem::operator_changed).
   virtual Effect apply(RunState& state, system::ConstrainedSystem& system) = 0;
+  /// The run has moved to a rebuilt discretization (α grew: a component's
+  /// apply returned Effect::rebuild) with a new system and the state carried
+  /// over (u on the new dofs, held dofs empty): take them. The default keeps
+  /// nothing that depends on the discretization.
+  virtual void rebind(const setup::Discretization& /*disc*/, RunState& /*state*/,
+                      system::ConstrainedSystem& /*system*/) {}
 };
 
 }  // namespace perimorph::evolution

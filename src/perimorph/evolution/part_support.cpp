@@ -17,7 +17,7 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
   const std::size_t first = seen_;
   seen_ = state.failed_in_order.size();
   if (first == seen_) return {};
-  const int dim = disc_.dim();
+  const int dim = disc_->dim();
   const std::vector<double>& applied_force = system.applied_force();
   // A free dof whose every bond has failed has a zero row: the matrix turns
   // singular. Such a dof is coupled to nothing, so holding it at zero by a
@@ -26,7 +26,7 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
   for (Index d : detached_) {
     const double force = applied_force[static_cast<std::size_t>(d)];
     if (force != 0.0) {
-      const Vec3 x = disc_.dofmap.node_coordinate(d / dim);
+      const Vec3 x = disc_->dofmap.node_coordinate(d / dim);
       throw Error(
           fmt::format("bond failures have left the node at ({:g}, {:g}, {:g}) with no stiffness in "
                       "direction {} while an applied force {:g} acts on it: there is no quasi-static "
@@ -37,7 +37,7 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
   // A cell pair that lost its last intact bond may have cut a part free
   // (floating_parts.hpp). The bonds fail grouped by cell pair: each pair is
   // looked at once.
-  const assembly::NonlocalSpace space = disc_.nonlocal_space(&state.failed);
+  const assembly::NonlocalSpace space = disc_->nonlocal_space(&state.failed);
   bool separated = false;
   for (std::size_t k = first; k < seen_ && !separated; ++k) {
     const auto& id = state.failed_in_order[k];
@@ -51,7 +51,7 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
     const auto& prescribed = system.bc().dofs;
     held.insert(held.end(), prescribed.begin(), prescribed.end());
     std::sort(held.begin(), held.end());
-    FloatingParts parts = find_floating_parts(disc_, space, held, applied_force);
+    FloatingParts parts = find_floating_parts(*disc_, space, held, applied_force);
     pins_ = std::move(parts.pins);
     parts_ = parts.parts;
   }
@@ -66,6 +66,31 @@ Effect PartSupport::apply(RunState& state, system::ConstrainedSystem& system) {
   state.held_dofs.insert(state.held_dofs.end(), pins_.begin(), pins_.end());
   state.floating_parts += static_cast<std::size_t>(parts_);
   return Effect::hold;
+}
+
+}  // namespace perimorph::evolution
+
+namespace perimorph::evolution {
+
+void PartSupport::rebind(const setup::Discretization& disc, RunState& state,
+                         system::ConstrainedSystem& system) {
+  disc_ = &disc;
+  state.held_dofs.clear();
+  if (state.failed_in_order.empty()) return;
+  std::vector<Index> free;
+  for (Index d = 0; d < disc.dofmap.num_dofs(); ++d)
+    if (!system.prescribed(d)) free.push_back(d);
+  const std::vector<Index> detached = system.without_stiffness(free);
+  system.hold(detached, true);
+  std::vector<Index> held = detached;
+  const auto& prescribed = system.bc().dofs;
+  held.insert(held.end(), prescribed.begin(), prescribed.end());
+  std::sort(held.begin(), held.end());
+  const FloatingParts parts =
+      find_floating_parts(disc, disc.nonlocal_space(&state.failed), held, system.applied_force());
+  system.hold(parts.pins, false);
+  state.held_dofs = detached;
+  state.held_dofs.insert(state.held_dofs.end(), parts.pins.begin(), parts.pins.end());
 }
 
 }  // namespace perimorph::evolution

@@ -17,7 +17,7 @@ namespace perimorph::evolution {
 
 class PartSupport final : public Component {
  public:
-  explicit PartSupport(const setup::Discretization& disc) : disc_(disc) {}
+  explicit PartSupport(const setup::Discretization& disc) : disc_(&disc) {}
 
   std::string_view name() const override { return "support of parts cut free"; }
   /// Looks at the bonds failed since the last inspect: the free dofs the
@@ -31,9 +31,13 @@ class PartSupport final : public Component {
   /// zero right-hand side, then the pins of the parts) and records them in the
   /// state (held dofs, detached dofs, floating parts). Effect::hold.
   Effect apply(RunState& state, system::ConstrainedSystem& system) override;
+  /// Holds again, on the new system, what was held: every free dof with no
+  /// stiffness, and (when bonds have failed) the parts cut free, found anew
+  /// on the whole model; the state's held dofs become these (counts kept).
+  void rebind(const setup::Discretization& disc, RunState& state, system::ConstrainedSystem& system) override;
 
  private:
-  const setup::Discretization& disc_;  ///< non-owning; outlives the component
+  const setup::Discretization* disc_;  ///< non-owning: the run's current discretization
   std::size_t seen_ = 0;               ///< failed bonds already looked at (RunState::failed_in_order)
   std::vector<Index> detached_, pins_;
   int parts_ = 0;

@@ -21,14 +21,17 @@ namespace perimorph::evolution {
 /// The energy balance of THEORY §5: the work W of the external forces, the
 /// strain energy U of the last state, the fracture dissipation D (every failed
 /// bond at s_crit) and the overshoot of the finite load steps (what failed
-/// bonds held beyond s_crit). W − U − D − overshoot ≥ 0 is the energy
-/// released by re-equilibration after failures.
+/// bonds held beyond s_crit). W + ΔU_α − U − D − overshoot ≥ 0 is the energy
+/// released by re-equilibration after failures (ΔU_α: model_change).
 struct EnergyLedger {
   double external_work = 0.0;  ///< W, cumulative
   double strain_energy = 0.0;  ///< U, of the last recorded state
   double dissipated = 0.0;     ///< D, cumulative
   double overshoot = 0.0;      ///< cumulative
-  double released() const { return external_work - strain_energy - dissipated - overshoot; }
+  /// Strain energy α's growth added at fixed displacement (the stiffness
+  /// changed, no work was done), cumulative; 0 without [adaptivity].
+  double model_change = 0.0;
+  double released() const { return external_work + model_change - strain_energy - dissipated - overshoot; }
 };
 
 struct RunState {

@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -54,6 +55,11 @@ class Matrix final : public assembly::MatrixInserter {
   Index rows() const;
   /// Number of stored non-zeros (allocated = used after finalize).
   double nonzeros() const;
+  /// Calls visit(row, columns, values) for every row in order, with the
+  /// stored entries of the row (columns ascending). The spans are valid only
+  /// during the call.
+  void visit_rows(
+      const std::function<void(Index, std::span<const Index>, std::span<const double>)>& visit) const;
   /// Dense copy, for tests on tiny matrices.
   Eigen::MatrixXd to_dense() const;
   /// Marks the matrix symmetric positive definite (after finalize).

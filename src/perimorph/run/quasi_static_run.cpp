@@ -42,7 +42,7 @@ std::string max_iterations_source(const casefile::FractureSpec& spec) {
 }  // namespace
 
 QuasiStaticRun::QuasiStaticRun(const setup::Discretization& disc, const RunOptions& options)
-    : disc_(disc),
+    : disc_(&disc),
       start_(std::chrono::steady_clock::now()),
       state_(disc),
       u_(disc.dofmap.num_dofs(), disc.dim()),
@@ -58,7 +58,10 @@ QuasiStaticRun::QuasiStaticRun(const setup::Discretization& disc, const RunOptio
   progress_->phase("loads");
   setup_ = prepare_run(disc);
   for (auto& c : setup_.components)
-    if (auto* f = dynamic_cast<evolution::BondFailure*>(c.get())) fracture_ = f;
+    if (auto* f = dynamic_cast<evolution::BondFailure*>(c.get()))
+      fracture_ = f;
+    else if (auto* a = dynamic_cast<evolution::Adaptivity*>(c.get()))
+      adaptivity_ = a;
 
   progress_->phase("assembly");
   system::AssembledStiffness assembled = system::assemble_stiffness(disc);
@@ -87,7 +90,7 @@ std::string QuasiStaticRun::kept() const {
 
 void QuasiStaticRun::apply_load(int i) {
   state_.increment = i + 1;
-  state_.load_factor = disc_.config.loading.factors[static_cast<std::size_t>(i)];
+  state_.load_factor = disc_->config.loading.factors[static_cast<std::size_t>(i)];
   rec_ = IncrementRecord{};
   failed_before_ = state_.failed.size();
   dissipated_before_ = state_.energy.dissipated;
@@ -123,7 +126,7 @@ void QuasiStaticRun::solve() {
   }
   // A re-equilibration at fixed load.
   const std::vector<double> u_before = std::move(state_.u);
-  if (fracture_ && !fracture_->proposed().empty()) {
+  if (fracture_ && bonds_failed_in_pass_ && !fracture_->proposed().empty()) {
     double max_stretch = 0.0;
     for (const auto& b : fracture_->proposed()) max_stretch = std::max(max_stretch, b.stretch);
     output_->add_failure_row(state_.increment, rec_.break_iterations, fracture_->proposed().size(),
@@ -149,6 +152,7 @@ void QuasiStaticRun::warn_unused_options() {
 
 bool QuasiStaticRun::evolve() {
   bool changed = false;
+  bonds_failed_in_pass_ = false;
   for (auto& component : setup_.components) {
     evolution::Proposal proposal;
     try {
@@ -158,20 +162,22 @@ bool QuasiStaticRun::evolve() {
     }
     if (proposal.quiet()) continue;
     if (!changed) {
-      if (rec_.break_iterations == disc_.config.fracture.max_iterations) stop_unsettled(proposal.changes);
+      if (rec_.break_iterations == disc_->config.fracture.max_iterations) stop_unsettled(proposal.changes);
       ++rec_.break_iterations;
     }
-    const evolution::Effect effect = component->apply(state_, *system_);
-    // The loop hands a changed A to the solver; a rebuilt discretization (new
-    // dofs) needs a new system and a carried-over state, which it cannot do yet.
-    PERIMORPH_ASSERT(effect != evolution::Effect::rebuild,
-                     "an evolution component rebuilt the discretization: the run loop does not rebuild yet");
     changed = true;
+    const evolution::Effect effect = component->apply(state_, *system_);
+    if (component.get() == fracture_) bonds_failed_in_pass_ = true;
+    if (effect == evolution::Effect::rebuild) {
+      // A new model: re-solve before any other component looks at the state.
+      rebuild();
+      return true;
+    }
   }
   if (!changed) return false;
   system_->operator_changed();
-  if (fracture_ && !fracture_->proposed().empty())
-    output_->add_failed_bonds(disc_, state_.increment, rec_.break_iterations, fracture_->proposed(),
+  if (bonds_failed_in_pass_)
+    output_->add_failed_bonds(*disc_, state_.increment, rec_.break_iterations, fracture_->proposed(),
                               fracture_->s_crit());
   return true;
 }
@@ -194,13 +200,13 @@ void QuasiStaticRun::stop_unsettled(std::size_t over) {
       "raise {}. The state after the last iteration is kept as increment {}: {}; every iteration "
       "is in {}. {}",
       i, increments(), state_.load_factor, rec_.break_iterations, rec_.bonds_broken_increment, over,
-      max_iterations_source(disc_.config.fracture), i, files, output.failures_csv_path(), kept()));
+      max_iterations_source(disc_->config.fracture), i, files, output.failures_csv_path(), kept()));
 }
 
 void QuasiStaticRun::stop_unsupported(const std::exception& e) {
   progress_->finish();
   const int i = state_.increment;
-  output_->write_increment_vtu(disc_, i, state_.load_factor, state_.u,
+  output_->write_increment_vtu(*disc_, i, state_.load_factor, state_.u,
                                fracture_ ? fracture_->fields(state_) : evolution::FractureFields{});
   throw Error(
       fmt::format("increment {}/{} (load factor {}), bond-breaking iteration {}: {}. The displacement "
@@ -211,7 +217,7 @@ void QuasiStaticRun::stop_unsupported(const std::exception& e) {
 
 void QuasiStaticRun::record(bool force_vtu) {
   const double lambda = state_.load_factor;
-  const int dim = disc_.dim();
+  const int dim = disc_->dim();
   const std::vector<double>& uv = state_.u;
   const std::vector<double>& F = system_->applied_force();
   if (fracture_) {
@@ -226,6 +232,21 @@ void QuasiStaticRun::record(bool force_vtu) {
     rec_.crack_area = crack.projected;
     rec_.broken_face_area = crack.total;
     rec_.floating_parts = state_.floating_parts;
+  }
+  if (adaptivity_) {
+    const auto& nl = *disc_->nonlocal;
+    rec_.dofs = disc_->dofmap.num_dofs();
+    rec_.dg_cells = 0;
+    rec_.nonlocal_cells = 0;
+    for (Index c = 0; c < disc_->mesh.num_cells(); ++c) {
+      rec_.dg_cells += disc_->dofmap.continuity(c) != dofs::Continuity::continuous;
+      rec_.nonlocal_cells += nl.points.cell_alpha_max[static_cast<std::size_t>(c)] > 0.0;
+    }
+    rec_.alpha_balls = adaptivity_->balls().size();
+    rec_.model_change = state_.energy.model_change;
+    rec_.remodel_seconds = remodel_seconds_;
+    output_->add_alpha_balls(std::span(adaptivity_->balls()).subspan(balls_written_));
+    balls_written_ = adaptivity_->balls().size();
   }
   std::vector<double> reaction(fint_);
   for (std::size_t k = 0; k < reaction.size(); ++k) reaction[k] -= lambda * F[k];
@@ -244,11 +265,12 @@ void QuasiStaticRun::record(bool force_vtu) {
   rec_.iterations = summary_.last_solve.iterations;
   rec_.relative_residual = summary_.last_solve.relative_residual;
   rec_.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  rec_.released = fracture_ ? work - energy - rec_.dissipated - rec_.overshoot : 0.0;
+  rec_.released =
+      fracture_ ? work + state_.energy.model_change - energy - rec_.dissipated - rec_.overshoot : 0.0;
   output_->add_row(rec_);
   const int i = state_.increment;
-  if (force_vtu || i % disc_.config.output.every == 0 || i == increments())
-    output_->write_increment_vtu(disc_, i, lambda, uv,
+  if (force_vtu || i % disc_->config.output.every == 0 || i == increments())
+    output_->write_increment_vtu(*disc_, i, lambda, uv,
                                  fracture_ ? fracture_->fields(state_) : evolution::FractureFields{});
   summary_.displacement = uv;
   summary_.reactions = rec_.reactions;
@@ -258,6 +280,7 @@ void QuasiStaticRun::record(bool force_vtu) {
 }
 
 void QuasiStaticRun::write_increment() {
+  if (adaptivity_) adaptivity_->join_silent(state_);
   if (fracture_) {
     rec_.bonds_broken_increment = state_.failed.size() - failed_before_;
     rec_.dissipated_increment = state_.energy.dissipated - dissipated_before_;
@@ -273,6 +296,12 @@ void QuasiStaticRun::write_increment() {
 
 RunSummary QuasiStaticRun::finish() {
   progress_->finish();
+  summary_.alpha = state_.alpha;
+  if (disc_->nonlocal) {
+    const auto& pts = disc_->nonlocal->points;
+    for (const auto& id : state_.failed_in_order)
+      summary_.failed_bond_points.emplace_back(pts.x[pts.index(id.e, id.g)], pts.x[pts.index(id.f, id.h)]);
+  }
   return std::move(summary_);
 }
 

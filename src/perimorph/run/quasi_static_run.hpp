@@ -7,6 +7,7 @@
 // output; it keeps the energy ledger and reports errors with what is kept on
 // disk.
 
+#include "perimorph/evolution/adaptivity.hpp"
 #include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/evolution/run_state.hpp"
 #include "perimorph/run/run_output.hpp"
@@ -31,7 +32,7 @@ class QuasiStaticRun {
   QuasiStaticRun(const setup::Discretization& disc, const RunOptions& options);
   ~QuasiStaticRun();
 
-  int increments() const { return static_cast<int>(disc_.config.loading.factors.size()); }
+  int increments() const { return static_cast<int>(disc_->config.loading.factors.size()); }
   /// Starts increment i (0-based) at its load factor.
   void apply_load(int i);
   /// Solves at the state's load factor and adds the work of the step to the
@@ -45,6 +46,13 @@ class QuasiStaticRun {
   /// With [fracture], an increment still changing after max_iterations passes
   /// stops the run (Error) with its state written.
   bool evolve();
+  /// With [adaptivity] update = "increment" and redo: once the increment has
+  /// settled, α grows from its failed bonds (THEORY §5); true if it grew: the
+  /// increment goes on at the grown model (solve, evolve) and settles again.
+  bool adapt();
+  /// With [adaptivity] update = "increment" and redo = false: after the
+  /// increment is written, α grows for the next one.
+  void adapt_for_next();
   /// The increment's CSV row, its VTU (every [output] every, and the last),
   /// the progress line.
   void write_increment();
@@ -58,14 +66,27 @@ class QuasiStaticRun {
   [[noreturn]] void stop_unsettled(std::size_t over);
   [[noreturn]] void stop_unsupported(const std::exception& e);
   void warn_unused_options();
+  /// Lets the adaptivity component grow α now; true if it did (and the run
+  /// moved to the grown model).
+  bool grow_alpha();
+  /// The run moves to the discretization of the state's α (grown): rebuilt,
+  /// the system remodelled (system/remodel.hpp), u carried over, the
+  /// components rebound, the strain-energy change booked in the ledger
+  /// (quasi_static_adapt.cpp).
+  void rebuild();
 
-  const setup::Discretization& disc_;  ///< non-owning; outlives the run
+  const setup::Discretization* disc_;             ///< the current one: the caller's (non-owning) or owned_
+  std::unique_ptr<setup::Discretization> owned_;  ///< rebuilt for a grown α (null before)
   std::chrono::steady_clock::time_point start_;
   std::unique_ptr<io::ProgressLine> own_progress_;
   io::ProgressLine* progress_ = nullptr;  ///< non-owning: own_progress_ or the caller's
   RunSetup setup_;
   std::unique_ptr<system::ConstrainedSystem> system_;
-  evolution::BondFailure* fracture_ = nullptr;  ///< non-owning: the bond-failure component, if any
+  evolution::BondFailure* fracture_ = nullptr;   ///< non-owning: the bond-failure component, if any
+  evolution::Adaptivity* adaptivity_ = nullptr;  ///< non-owning: the adaptivity component, if any
+  bool bonds_failed_in_pass_ = false;  ///< the last evolve pass broke bonds (fracture_->proposed() is new)
+  std::size_t balls_written_ = 0;      ///< adaptivity_->balls() already in the output
+  double remodel_seconds_ = 0.0;       ///< spent in rebuild(), cumulative
   std::unique_ptr<RunOutput> output_;
   evolution::RunState state_;
   la::Vector u_, internal_;                        ///< the solution (initial guess of the next solve), K u

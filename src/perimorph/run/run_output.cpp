@@ -45,7 +45,8 @@ RunOutput::RunOutput(const setup::Discretization& model, std::string directory, 
     : directory_(std::move(directory)),
       basename_(std::move(basename)),
       dim_(model.dim()),
-      fracture_(model.config.fracture.enabled) {
+      fracture_(model.config.fracture.enabled),
+      adaptive_(model.config.adaptivity.enabled) {
   std::error_code ec;
   std::filesystem::create_directories(directory_, ec);
   if (ec) throw InputError(fmt::format("cannot create output directory '{}': {}", directory_, ec.message()));
@@ -61,7 +62,15 @@ RunOutput::RunOutput(const setup::Discretization& model, std::string directory, 
          {"dissipated_energy", "dissipated_increment", "overshoot_energy", "released_energy", "bonds_broken",
           "bonds_broken_increment", "break_iterations", "crack_area", "broken_face_area", "floating_parts"})
       columns.emplace_back(c);
+  if (adaptive_)
+    for (const char* c :
+         {"dofs", "dg_cells", "nonlocal_cells", "alpha_balls", "model_energy_change", "remodel_time"})
+      columns.emplace_back(c);
   csv_ = std::make_unique<io::CsvTable>(csv_path(), std::move(columns));
+  if (adaptive_)
+    alpha_csv_ = std::make_unique<io::CsvTable>(
+        (std::filesystem::path(directory_) / (basename_ + "_alpha.csv")).string(),
+        std::vector<std::string>{"increment", "cell", "x", "y", "z", "radius", "transition", "predicted"});
   if (fracture_)
     failures_csv_ = std::make_unique<io::CsvTable>(
         failures_csv_path(),
@@ -175,7 +184,18 @@ void RunOutput::add_row(const IncrementRecord& r) {
                            static_cast<double>(r.bonds_broken), static_cast<double>(r.bonds_broken_increment),
                            static_cast<double>(r.break_iterations), r.crack_area, r.broken_face_area,
                            static_cast<double>(r.floating_parts)});
+  if (adaptive_)
+    row.insert(row.end(), {static_cast<double>(r.dofs), static_cast<double>(r.dg_cells),
+                           static_cast<double>(r.nonlocal_cells), static_cast<double>(r.alpha_balls),
+                           r.model_change, r.remodel_seconds});
   csv_->add_row(row);
+}
+
+void RunOutput::add_alpha_balls(std::span<const evolution::AlphaBall> balls) {
+  if (!alpha_csv_) return;
+  for (const auto& b : balls)
+    alpha_csv_->add_row({static_cast<double>(b.increment), static_cast<double>(b.cell), b.center.x(),
+                         b.center.y(), b.center.z(), b.radius, b.transition, b.predicted ? 1.0 : 0.0});
 }
 
 void RunOutput::add_failure_row(int increment, int iteration, std::size_t bonds,

@@ -4,6 +4,7 @@
 // docs/output.md).
 
 #include "perimorph/assembly/bond_stretch.hpp"
+#include "perimorph/evolution/adaptivity.hpp"
 #include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/io/csv_table.hpp"
 #include "perimorph/io/pvd_writer.hpp"
@@ -35,6 +36,13 @@ struct IncrementRecord {
   double crack_area = 0.0;         ///< evolution::BondFailure::crack_area().projected
   double broken_face_area = 0.0;   ///< evolution::BondFailure::crack_area().total
   std::size_t floating_parts = 0;  ///< parts cut free and held by a minimal support, cumulative
+  // Adaptive runs only ([adaptivity], THEORY §5):
+  Index dofs = 0;                ///< of the model the increment ended on
+  Index dg_cells = 0;            ///< cells with private (DG) nodes
+  Index nonlocal_cells = 0;      ///< cells with α > 0 at a non-local point
+  std::size_t alpha_balls = 0;   ///< balls added to α, cumulative
+  double model_change = 0.0;     ///< EnergyLedger::model_change, cumulative
+  double remodel_seconds = 0.0;  ///< rebuilding the discretization and the system, cumulative
 };
 
 class RunOutput {
@@ -58,6 +66,9 @@ class RunOutput {
   void add_failed_bonds(const setup::Discretization& model, int increment, int iteration,
                         std::span<const assembly::StretchedBond> bonds, double s_crit);
 
+  /// Adaptive runs: one row per ball added to α in BASENAME_alpha.csv.
+  void add_alpha_balls(std::span<const evolution::AlphaBall> balls);
+
   const std::string& directory() const { return directory_; }
   std::string csv_path() const;
   std::string pvd_path() const;
@@ -70,8 +81,8 @@ class RunOutput {
  private:
   std::string directory_, basename_;
   int dim_;
-  bool fracture_ = false;
-  std::unique_ptr<io::CsvTable> csv_, failures_csv_, failed_bonds_csv_;
+  bool fracture_ = false, adaptive_ = false;
+  std::unique_ptr<io::CsvTable> csv_, failures_csv_, failed_bonds_csv_, alpha_csv_;
   std::unique_ptr<io::PvdCollection> pvd_;
 };
 

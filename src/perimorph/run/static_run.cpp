@@ -1,8 +1,10 @@
 #include "perimorph/run/static_run.hpp"
 
+#include "perimorph/evolution/adaptivity.hpp"
 #include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/evolution/part_support.hpp"
 #include "perimorph/run/quasi_static_run.hpp"
+#include "perimorph/setup/critical_stretch.hpp"
 
 #include <filesystem>
 
@@ -21,6 +23,10 @@ RunSetup prepare_run(const setup::Discretization& disc) {
   setup.F = setup::build_external_force(disc);
   setup.sets = setup::reaction_sets(disc);
   if (disc.config.fracture.enabled) {
+    // The predictor must see a solve before bond failure does (adaptivity.hpp).
+    if (disc.config.adaptivity.enabled)
+      setup.components.push_back(
+          std::make_unique<evolution::Adaptivity>(disc, setup::critical_stretch(disc)));
     setup.components.push_back(std::make_unique<evolution::BondFailure>(disc));
     setup.components.push_back(std::make_unique<evolution::PartSupport>(disc));
   }
@@ -35,7 +41,14 @@ RunSummary run_static(const setup::Discretization& disc, const RunOptions& optio
     // THEORY §5: break the bonds over the criterion (and hold what they cut
     // loose), re-equilibrate at fixed load, until no component changes the model.
     while (run.evolve()) run.solve();
+    // THEORY §5, adaptive zone: α grows from the increment's failed bonds;
+    // the increment settles again on the grown model ([adaptivity] redo).
+    while (run.adapt()) {
+      run.solve();
+      while (run.evolve()) run.solve();
+    }
     run.write_increment();
+    run.adapt_for_next();
   }
   return run.finish();
 }

@@ -55,6 +55,10 @@ struct RunSummary {
   double external_work = 0.0;
   la::SolveReport last_solve;
   std::vector<IncrementRecord> history;  ///< one record per completed increment (what the CSV holds)
+  /// α of the model the run ended on (grown with [adaptivity]).
+  alpha::AlphaField alpha = alpha::AlphaField::constant(0.0);
+  /// The two ends of every failed bond, in the order they failed.
+  std::vector<std::pair<Vec3, Vec3>> failed_bond_points;
   std::string output_directory, csv_path, pvd_path;
 };
 

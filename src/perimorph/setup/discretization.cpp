@@ -5,6 +5,7 @@
 #include "perimorph/core/error.hpp"
 #include "perimorph/mesh/box.hpp"
 #include "perimorph/mesh/cut.hpp"
+#include "perimorph/mesh/holes.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -52,6 +53,13 @@ void add_node_set(mesh::Mesh& m, const casefile::NodeSetSpec& s, double tol) {
 mesh::Mesh build_mesh(const casefile::CaseConfig& config) {
   const auto& box = config.mesh.box;
   mesh::Mesh m = mesh::make_box({box.dim, box.lower, box.upper, box.cells});
+  for (const auto& h : config.mesh.holes) {  // before regions and cuts: they see the holed mesh
+    try {
+      mesh::remove_hole(m, Hole{box.dim, h.shape, h.center, h.radius, h.lower, h.upper});
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: {}", h.where.describe(), e.what()));
+    }
+  }
   for (const auto& r : config.regions) {
     std::vector<Index> cells;
     for (Index c = 0; c < m.num_cells(); ++c)

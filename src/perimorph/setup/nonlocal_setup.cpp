@@ -12,6 +12,12 @@
 
 namespace perimorph::setup {
 
+alpha::Profile alpha_profile(casefile::AlphaProfile p) {
+  return p == casefile::AlphaProfile::heaviside ? alpha::Profile::heaviside
+         : p == casefile::AlphaProfile::linear  ? alpha::Profile::linear
+                                                : alpha::Profile::cubic;
+}
+
 alpha::AlphaField make_alpha_field(const casefile::CaseConfig& config) {
   const auto& spec = config.alpha;
   if (spec.regions.empty()) return alpha::AlphaField::constant(spec.value);
@@ -19,9 +25,7 @@ alpha::AlphaField make_alpha_field(const casefile::CaseConfig& config) {
   for (const auto& r : spec.regions) {
     alpha::Region region;
     region.transition = r.transition;
-    region.profile = r.profile == casefile::AlphaProfile::heaviside ? alpha::Profile::heaviside
-                     : r.profile == casefile::AlphaProfile::linear  ? alpha::Profile::linear
-                                                                    : alpha::Profile::cubic;
+    region.profile = alpha_profile(r.profile);
     switch (r.shape) {
       case casefile::AlphaShapeKind::interval:
         region.shape = alpha::Interval{r.lower.x(), r.upper.x()};

@@ -26,6 +26,9 @@ struct NonlocalModel {
   assembly::MorphedStiffness morph;
 };
 
+/// The α profile of a case-file name.
+alpha::Profile alpha_profile(casefile::AlphaProfile p);
+
 /// The α field of a case (α ≡ 0 when [alpha] is absent).
 alpha::AlphaField make_alpha_field(const casefile::CaseConfig& config);
 

@@ -83,6 +83,11 @@ const std::vector<Index>& ConstrainedSystem::finish_downdate() {
   return last_downdated_;
 }
 
+void ConstrainedSystem::set_reference_diagonal(std::vector<double> diagonal) {
+  PERIMORPH_ASSERT(diagonal.size() == initial_diagonal_.size(), "reference diagonal of the wrong size");
+  initial_diagonal_ = std::move(diagonal);
+}
+
 std::vector<Index> ConstrainedSystem::without_stiffness(std::span<const Index> dofs) const {
   const std::vector<double> diag = A_.diagonal_at(dofs);
   std::vector<Index> out;

@@ -72,6 +72,12 @@ class ConstrainedSystem {
   /// first assembly's. Then operator_changed().
   void reassemble(const setup::Discretization& before, const setup::Discretization& after,
                   std::span<const Index> cells, const bonds::BrokenBonds* failed = nullptr);
+  /// The diagonal of A before any downdate (the reference of
+  /// without_stiffness and the springs of hold), one per dof.
+  const std::vector<double>& reference_diagonal() const { return initial_diagonal_; }
+  /// Replaces it (a system remodelled from another carries the first one's
+  /// reference over, system/remodel.hpp).
+  void set_reference_diagonal(std::vector<double> diagonal);
   /// True if the dof is prescribed.
   bool prescribed(Index dof) const { return !std::isnan(prescribed_[static_cast<std::size_t>(dof)]); }
 

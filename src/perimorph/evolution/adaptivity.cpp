@@ -1,0 +1,172 @@
+#include "perimorph/evolution/adaptivity.hpp"
+
+#include "perimorph/assembly/local_assembly.hpp"
+#include "perimorph/assembly/morphed_stiffness.hpp"
+#include "perimorph/core/error.hpp"
+
+#include <fmt/format.h>
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+
+namespace perimorph::evolution {
+
+namespace {
+
+/// The largest principal value of a Voigt strain (engineering shear) of the
+/// model dimension: the largest stretch of any direction (THEORY §5, s = n·ε·n).
+double largest_principal_strain(std::span<const double> voigt, int dim) {
+  if (dim == 1) return voigt[0];
+  Eigen::Matrix3d e = Eigen::Matrix3d::Zero();
+  if (dim == 2) {
+    e(0, 0) = voigt[0];
+    e(1, 1) = voigt[1];
+    e(0, 1) = e(1, 0) = 0.5 * voigt[2];
+  } else {  // xx yy zz yz xz xy
+    e(0, 0) = voigt[0];
+    e(1, 1) = voigt[1];
+    e(2, 2) = voigt[2];
+    e(1, 2) = e(2, 1) = 0.5 * voigt[3];
+    e(0, 2) = e(2, 0) = 0.5 * voigt[4];
+    e(0, 1) = e(1, 0) = 0.5 * voigt[5];
+  }
+  const int n = dim;
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(e.topLeftCorner(n, n), Eigen::EigenvaluesOnly);
+  return solver.eigenvalues().maxCoeff();
+}
+
+/// |x − y| in the first dim coordinates.
+double distance(const Vec3& x, const Vec3& y, int dim) {
+  double d2 = 0.0;
+  for (int d = 0; d < dim; ++d) d2 += (x[d] - y[d]) * (x[d] - y[d]);
+  return std::sqrt(d2);
+}
+
+/// The longest side of the cell's bounding box: h_e of THEORY §5.
+double cell_size(const mesh::Mesh& m, Index c) {
+  double size = 0.0;
+  for (int d = 0; d < m.dim(); ++d) {
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (Index n : m.cell(c)) {
+      lo = std::min(lo, m.node(n)[d]);
+      hi = std::max(hi, m.node(n)[d]);
+    }
+    size = std::max(size, hi - lo);
+  }
+  return size;
+}
+
+}  // namespace
+
+Adaptivity::Adaptivity(const setup::Discretization& disc, double s_crit) : disc_(&disc), s_crit_(s_crit) {
+  const auto& spec = disc.config.adaptivity;
+  const double delta = disc.config.nonlocal.horizon;
+  core_ = spec.core >= 0.0 ? spec.core : delta;
+  transition_ = spec.transition >= 0.0 ? spec.transition : delta;
+  seeded_.assign(static_cast<std::size_t>(disc.mesh.num_cells()), 0);
+}
+
+void Adaptivity::propose(Index cell, int increment, bool predicted) {
+  char& seeded = seeded_[static_cast<std::size_t>(cell)];
+  if (seeded) return;
+  seeded = 1;
+  const mesh::Mesh& m = disc_->mesh;
+  proposed_.push_back(
+      {increment, cell, m.cell_centroid(cell), cell_size(m, cell) + core_, transition_, predicted});
+}
+
+bool Adaptivity::raises_alpha(const AlphaBall& b) const {
+  const mesh::Mesh& m = disc_->mesh;
+  const auto& nl = *disc_->nonlocal;
+  const alpha::Region ball{alpha::Ball{b.center, b.radius}, b.transition,
+                           setup::alpha_profile(disc_->config.adaptivity.profile)};
+  const int dim = m.dim();
+  const std::size_t nq = disc_->rule.size();
+  for (Index c = 0; c < m.num_cells(); ++c) {
+    const double reach = b.radius + b.transition + cell_size(m, c);
+    if (distance(m.cell_centroid(c), b.center, dim) > reach) continue;
+    for (int q = 0; q < nl.points.per_cell; ++q) {
+      const std::size_t k = nl.points.index(c, q);
+      if (alpha::region_value(ball, nl.points.x[k], dim) > nl.points.alpha[k]) return true;
+    }
+    for (std::size_t q = 0; q < nq; ++q) {
+      const Vec3 x = assembly::physical_point(m, c, disc_->rule[q].xi);
+      if (alpha::region_value(ball, x, dim) > nl.morph.alpha[static_cast<std::size_t>(c) * nq + q])
+        return true;
+    }
+  }
+  return false;
+}
+
+Proposal Adaptivity::inspect(const RunState& state, const system::ConstrainedSystem& /*system*/) {
+  // Proposed cells are marked seeded at once; a proposal not applied is
+  // impossible (the run applies every non-quiet proposal).
+  proposed_.clear();
+  const auto& spec = disc_->config.adaptivity;
+  const auto& points = disc_->nonlocal->points;
+  const auto& failed = state.failed_in_order;
+  if (spec.predictor) {
+    for (; checked_ < failed.size(); ++checked_) {
+      const auto& id = failed[checked_];
+      for (Index c : {id.e, id.f})
+        if (points.cell_alpha_min[static_cast<std::size_t>(c)] < 1.0) {
+          const Vec3 x = disc_->mesh.cell_centroid(c);
+          throw Error(fmt::format(
+              "a bond failed in cell {} (centroid {:.4g}, {:.4g}, {:.4g}), where α < 1: the predictor was "
+              "late (the bond reached s_crit before the strain of a cell with α < 1 reached theta · s_crit = "
+              "{:g}). Lower [adaptivity] theta (now {}) or the load increments",
+              c, x.x(), x.y(), x.z(), spec.theta * s_crit_, spec.theta));
+        }
+    }
+    const double bar = spec.theta * s_crit_;
+    const assembly::LocalSpace space = disc_->local_space();
+    for (Index c = 0; c < disc_->mesh.num_cells(); ++c) {
+      if (seeded_[static_cast<std::size_t>(c)] || points.cell_alpha_min[static_cast<std::size_t>(c)] >= 1.0)
+        continue;
+      for (const auto& q : disc_->rule)
+        if (largest_principal_strain(assembly::strain_at(space, c, q.xi, state.u), disc_->dim()) > bar) {
+          propose(c, state.increment, true);
+          break;
+        }
+    }
+  }
+  if (spec.update == casefile::AdaptivityUpdate::iteration || growth_due_) {
+    for (; seen_ < failed.size(); ++seen_)
+      for (Index c : {failed[seen_].e, failed[seen_].f}) propose(c, state.increment, false);
+  }
+  // A ball that raises α at no quadrature point leaves the discretization as
+  // it is: it joins α without a rebuild (join_silent).
+  for (const AlphaBall& b : proposed_)
+    if (!raises_alpha(b)) silent_.push_back(b);
+  std::erase_if(proposed_, [&](const AlphaBall& b) { return !raises_alpha(b); });
+  return {proposed_.size()};
+}
+
+void Adaptivity::join(std::vector<AlphaBall>& balls, RunState& state) {
+  std::vector<alpha::Region> regions;
+  const alpha::Profile profile = setup::alpha_profile(disc_->config.adaptivity.profile);
+  for (const AlphaBall& b : balls)
+    regions.push_back({alpha::Ball{b.center, b.radius}, b.transition, profile});
+  state.alpha = state.alpha.grown(std::move(regions), disc_->dim());
+  balls_.insert(balls_.end(), balls.begin(), balls.end());
+  balls.clear();
+}
+
+Effect Adaptivity::apply(RunState& state, system::ConstrainedSystem& /*system*/) {
+  growth_due_ = false;
+  join(silent_, state);
+  join(proposed_, state);
+  return Effect::rebuild;
+}
+
+void Adaptivity::join_silent(RunState& state) {
+  join(silent_, state);
+}
+
+void Adaptivity::rebind(const setup::Discretization& disc, RunState& /*state*/,
+                        system::ConstrainedSystem& /*system*/) {
+  disc_ = &disc;
+}
+
+}  // namespace perimorph::evolution

@@ -1,0 +1,97 @@
+// The adaptive step of a quasi-static run (THEORY §5, thesis §3.3.4): α grows
+// with the crack, and the run moves to the grown model. Part of
+// QuasiStaticRun (quasi_static_run.hpp).
+
+#include "perimorph/core/error.hpp"
+#include "perimorph/io/progress.hpp"
+#include "perimorph/run/quasi_static_run.hpp"
+#include "perimorph/setup/boundary_conditions.hpp"
+#include "perimorph/system/remodel.hpp"
+
+#include <chrono>
+
+namespace perimorph::run {
+
+namespace {
+
+/// ½ uᵀ K u.
+double strain_energy(const system::ConstrainedSystem& system, const la::Vector& u, la::Vector& Ku) {
+  system.K().mult(u, Ku);
+  const std::vector<double> a = u.to_std(), b = Ku.to_std();
+  double e = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) e += 0.5 * a[k] * b[k];
+  return e;
+}
+
+}  // namespace
+
+bool QuasiStaticRun::grow_alpha() {
+  adaptivity_->allow_growth();
+  evolution::Proposal proposal;
+  try {
+    proposal = adaptivity_->inspect(state_, *system_);
+  } catch (const Error& e) {
+    stop_unsupported(e);
+  }
+  if (proposal.quiet()) return false;
+  const evolution::Effect effect = adaptivity_->apply(state_, *system_);
+  PERIMORPH_ASSERT(effect == evolution::Effect::rebuild, "the adaptive step must rebuild");
+  rebuild();
+  return true;
+}
+
+bool QuasiStaticRun::adapt() {
+  const auto& spec = disc_->config.adaptivity;
+  if (!adaptivity_ || spec.update != casefile::AdaptivityUpdate::increment || !spec.redo) return false;
+  if (rec_.break_iterations == disc_->config.fracture.max_iterations) stop_unsettled(0);
+  if (!grow_alpha()) return false;
+  ++rec_.break_iterations;  // the next solve is at fixed load
+  bonds_failed_in_pass_ = false;
+  return true;
+}
+
+void QuasiStaticRun::adapt_for_next() {
+  const auto& spec = disc_->config.adaptivity;
+  if (!adaptivity_ || spec.update != casefile::AdaptivityUpdate::increment || spec.redo) return;
+  if (!grow_alpha()) return;
+  // The next increment's elastic step starts from the last state on the new model.
+  u_prev_ = state_.u;
+  la::Vector Ku(disc_->dofmap.num_dofs(), disc_->dim());
+  u_.assign(u_prev_);
+  system_->K().mult(u_, Ku);
+  fint_prev_ = Ku.to_std();
+}
+
+void QuasiStaticRun::rebuild() {
+  const auto t0 = std::chrono::steady_clock::now();
+  progress_->phase("remodel");
+  const double before_energy = strain_energy(*system_, u_, internal_);
+  auto next = std::make_unique<setup::Discretization>(setup::rebuild_for_alpha(*disc_, state_.alpha));
+  system::Remodelled r = system::remodel(*system_, *disc_, *next, &state_.failed,
+                                         setup::build_dirichlet(*next), setup::build_external_force(*next));
+  const Index n = next->dofmap.num_dofs();
+  state_.u = system::transfer_dof_vector(*disc_, *next, state_.u);
+  u_prev_ = system::transfer_dof_vector(*disc_, *next, u_prev_);
+  fint_prev_.assign(static_cast<std::size_t>(n),
+                    0.0);  // recomputed where it is used next (record, adapt_for_next)
+  system_ = std::move(r.system);
+  system_->attach_solver();
+  setup_.sets = setup::reaction_sets(*next);
+  disc_ = next.get();
+  owned_ = std::move(next);  // the previous discretization (and its system) are gone now
+  u_ = la::Vector(n, disc_->dim());
+  internal_ = la::Vector(n, disc_->dim());
+  u_.assign(state_.u);
+  state_.energy.model_change += strain_energy(*system_, u_, internal_) - before_energy;
+  for (auto& component : setup_.components) {
+    try {
+      component->rebind(*disc_, state_, *system_);
+    } catch (const Error& e) {
+      stop_unsupported(e);
+    }
+  }
+  system_->operator_changed();
+  remodel_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace perimorph::run

@@ -1,0 +1,184 @@
+#include "perimorph/system/remodel.hpp"
+
+#include "perimorph/assembly/inserter.hpp"
+#include "perimorph/assembly/local_assembly.hpp"
+#include "perimorph/assembly/nonlocal_assembly.hpp"
+#include "perimorph/assembly/sparsity.hpp"
+#include "perimorph/core/error.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+namespace perimorph::system {
+
+namespace {
+
+using clock = std::chrono::steady_clock;
+double since(clock::time_point t0) {
+  return std::chrono::duration<double>(clock::now() - t0).count();
+}
+
+bool same_cell_dofs(const dofs::DofMap& a, const dofs::DofMap& b, Index c) {
+  return a.continuity(c) == b.continuity(c) && a.cell_nodes(c).size() == b.cell_nodes(c).size();
+}
+
+/// Adds sign × each block to a matrix.
+class SignedInserter final : public assembly::MatrixInserter {
+ public:
+  SignedInserter(assembly::MatrixInserter& target, double sign) : target_(target), sign_(sign) {}
+  void add(std::span<const Index> rows, std::span<const Index> cols,
+           std::span<const double> values) override {
+    block_.resize(values.size());
+    for (std::size_t k = 0; k < values.size(); ++k) block_[k] = sign_ * values[k];
+    target_.add(rows, cols, block_);
+  }
+
+ private:
+  assembly::MatrixInserter& target_;  ///< non-owning
+  double sign_;
+  std::vector<double> block_;
+};
+
+/// sign × the stiffness `disc` assembles for the flagged cells (their local
+/// blocks, the bonds of every cell pair with a flagged cell), `failed` left out.
+void add_cells(assembly::MatrixInserter& K, const setup::Discretization& disc, const std::vector<char>& in,
+               const bonds::BrokenBonds* failed, double sign) {
+  SignedInserter inserter(K, sign);
+  auto flagged = [&](Index c) { return in[static_cast<std::size_t>(c)] != 0; };
+  assembly::assemble_elasticity(disc.local_space(), disc.stiffness, inserter,
+                                [&](Index c) { return flagged(c) && disc.has_local_stiffness(c); });
+  if (!disc.nonlocal) return;
+  assembly::NonlocalOptions options;
+  options.include_pair = [&](Index e, Index f) { return flagged(e) || flagged(f); };
+  assembly::assemble_nonlocal(disc.nonlocal_space(failed), inserter, options);
+}
+
+}  // namespace
+
+std::vector<Index> changed_cells(const setup::Discretization& before, const setup::Discretization& after) {
+  PERIMORPH_ASSERT(before.mesh.num_cells() == after.mesh.num_cells(), "changed_cells: not the same mesh");
+  std::vector<Index> out;
+  const auto& C0 = before.stiffness;
+  const auto& C1 = after.stiffness;
+  const std::size_t nv2 = static_cast<std::size_t>(C0.voigt() * C0.voigt());
+  for (Index c = 0; c < before.mesh.num_cells(); ++c) {
+    bool changed = !same_cell_dofs(before.dofmap, after.dofmap, c) ||
+                   before.has_local_stiffness(c) != after.has_local_stiffness(c);
+    for (int q = 0; q < C0.points_per_cell() && !changed; ++q)
+      changed = std::memcmp(C0.at(c, q), C1.at(c, q), nv2 * sizeof(double)) != 0;
+    if (before.nonlocal && after.nonlocal && !changed) {
+      const auto& p0 = before.nonlocal->points;
+      const auto& p1 = after.nonlocal->points;
+      for (int q = 0; q < p0.per_cell && !changed; ++q)
+        changed = p0.alpha[p0.index(c, q)] != p1.alpha[p1.index(c, q)];
+    }
+    if (changed) out.push_back(c);
+  }
+  return out;
+}
+
+std::vector<double> transfer_dof_vector(const setup::Discretization& before,
+                                        const setup::Discretization& after, std::span<const double> values,
+                                        bool combine_max) {
+  const int dim = before.dim();
+  const auto& d0 = before.dofmap;
+  const auto& d1 = after.dofmap;
+  PERIMORPH_ASSERT(values.size() == static_cast<std::size_t>(d0.num_dofs()),
+                   "transfer: vector of another size");
+  std::vector<double> out(static_cast<std::size_t>(d1.num_dofs()), combine_max ? -HUGE_VAL : 0.0);
+  auto put = [&](Index node, int k, double v) {
+    double& slot = out[static_cast<std::size_t>(node * dim + k)];
+    slot = combine_max ? std::max(slot, v) : v;
+  };
+  for (Index c = 0; c < before.mesh.num_cells(); ++c) {
+    const auto n0 = d0.cell_nodes(c), n1 = d1.cell_nodes(c);
+    for (int k = 0; k < dim; ++k) {
+      auto old_value = [&](std::size_t a) { return values[static_cast<std::size_t>(n0[a] * dim + k)]; };
+      if (n0.size() == n1.size()) {
+        for (std::size_t a = 0; a < n1.size(); ++a) put(n1[a], k, old_value(a));
+      } else if (n1.size() == 1) {  // corners → DG degree 0: Q1 value at the centroid
+        double mean = 0.0;
+        for (std::size_t a = 0; a < n0.size(); ++a) mean += old_value(a);
+        put(n1[0], k, mean / static_cast<double>(n0.size()));
+      } else {  // DG degree 0 → corners
+        for (std::size_t a = 0; a < n1.size(); ++a) put(n1[a], k, old_value(0));
+      }
+    }
+  }
+  return out;
+}
+
+Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& before,
+                   const setup::Discretization& after, const bonds::BrokenBonds* failed,
+                   setup::DirichletData bc, std::span<const double> F) {
+  Remodelled out;
+  const int dim = before.dim();
+  out.cells = changed_cells(before, after);
+  std::vector<char> in(static_cast<std::size_t>(before.mesh.num_cells()), 0);
+  for (Index c : out.cells) in[static_cast<std::size_t>(c)] = 1;
+
+  // The scale of K before any cell is subtracted: what is dropped below must be round-off of it.
+  double largest = 0.0;
+  for (double d : system.reference_diagonal()) largest = std::max(largest, std::abs(d));
+  auto t0 = clock::now();
+  la::Matrix& K_old = system.K();
+  add_cells(K_old, before, in, failed, -1.0);
+  K_old.finalize();
+  out.times.subtract = since(t0);
+
+  // What is left of K_old belongs to unchanged cells and cell pairs: each old
+  // dof node carries it to the node the same corner of a cell whose dofs did
+  // not change has in `after` (-1: none; only round-off is left there).
+  t0 = clock::now();
+  std::vector<Index> kept(static_cast<std::size_t>(before.dofmap.num_nodes()), -1);
+  for (Index c = 0; c < before.mesh.num_cells(); ++c) {
+    if (!same_cell_dofs(before.dofmap, after.dofmap, c)) continue;
+    const auto n0 = before.dofmap.cell_nodes(c), n1 = after.dofmap.cell_nodes(c);
+    for (std::size_t a = 0; a < n0.size(); ++a) kept[static_cast<std::size_t>(n0[a])] = n1[a];
+  }
+  const assembly::SparsityPattern pattern =
+      assembly::build_sparsity(after.dofmap, after.nonlocal ? &after.nonlocal->graph : nullptr);
+  la::Matrix K_new(pattern);
+  std::vector<Index> row(1), cols;
+  std::vector<double> vals;
+  double dropped = 0.0;
+  K_old.visit_rows([&](Index r, std::span<const Index> c, std::span<const double> v) {
+    const Index node = kept[static_cast<std::size_t>(r / dim)];
+    cols.clear();
+    vals.clear();
+    const auto allowed = node >= 0 ? pattern.row(node) : std::span<const Index>{};
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      const Index to = kept[static_cast<std::size_t>(c[k] / dim)];
+      if (node < 0 || to < 0 || !std::binary_search(allowed.begin(), allowed.end(), to)) {
+        dropped = std::max(dropped, std::abs(v[k]));
+        continue;
+      }
+      cols.push_back(to * dim + c[k] % dim);
+      vals.push_back(v[k]);
+    }
+    row[0] = node * dim + r % dim;
+    if (!cols.empty()) K_new.add(row, cols, vals);
+  });
+  PERIMORPH_ASSERT(dropped <= 1e-9 * largest,
+                   "remodel: an entry of the old stiffness that no unchanged cell carries is not round-off");
+  out.times.copy = since(t0);
+
+  t0 = clock::now();
+  add_cells(K_new, after, in, failed, 1.0);
+  K_new.finalize();
+  out.times.add = since(t0);
+
+  t0 = clock::now();
+  std::vector<double> reference = transfer_dof_vector(before, after, system.reference_diagonal(), true);
+  out.system = std::make_unique<ConstrainedSystem>(after, std::move(K_new), std::move(bc), F);
+  const std::vector<double> fresh = out.system->reference_diagonal();
+  for (std::size_t k = 0; k < reference.size(); ++k)
+    if (!(reference[k] > 0.0) || out.system->prescribed(static_cast<Index>(k))) reference[k] = fresh[k];
+  out.system->set_reference_diagonal(std::move(reference));
+  out.times.constrain = since(t0);
+  return out;
+}
+
+}  // namespace perimorph::system
