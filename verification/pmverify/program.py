@@ -112,9 +112,9 @@ class RunResult:
         return found[0]
 
     def csv_path(self):
-        """BASENAME.csv of a run (not BASENAME_failures.csv nor BASENAME_failed_bonds.csv), or the ghost-forces CSV."""
+        """BASENAME.csv of a run (not BASENAME_failures.csv, _failed_bonds.csv nor _alpha.csv), or the ghost-forces CSV."""
         found = [p for p in sorted(glob.glob(os.path.join(self.dir, "*.csv")))
-                 if not p.endswith(("_failures.csv", "_failed_bonds.csv"))]
+                 if not p.endswith(("_failures.csv", "_failed_bonds.csv", "_alpha.csv"))]
         if len(found) != 1:
             raise RuntimeError(f"{self.dir}: {len(found)} result CSV files (need 1)")
         return found[0]
