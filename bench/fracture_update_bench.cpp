@@ -57,6 +57,7 @@
 //
 // Run: bench/run_fracture_bench.sh.
 
+#include "b6_case.hpp"
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/evolution/floating_parts.hpp"
@@ -89,7 +90,6 @@ using namespace perimorph;
 using Clock = std::chrono::steady_clock;
 
 constexpr int kDim = 3;
-constexpr double kOpening = 0.01;     // u_d
 constexpr std::size_t kMaxK = 1000;   // most bonds broken in one update
 constexpr std::size_t kStateK = 100;  // failed bonds for FullReassembly, Solve, Fields
 constexpr int kSizes[] = {12, 24, 30};
@@ -97,59 +97,6 @@ constexpr int kCounts[] = {1, 10, 100, 1000};
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-casefile::DirichletSpec opening(const std::string& set, double uy) {
-  casefile::DirichletSpec d;
-  d.set = set;
-  d.constrained = {true, true, true};
-  d.value = Vec3(0.0, uy, 0.0);
-  return d;
-}
-
-casefile::NodeSetSpec node_set(const std::string& name, Vec3 lower, Vec3 upper) {
-  casefile::NodeSetSpec s;
-  s.name = name;
-  s.lower = lower;
-  s.upper = upper;
-  return s;
-}
-
-/// B6 with nx × (2nx/3) × (nx/6) cells.
-casefile::CaseConfig b6_case(int nx) {
-  const double inf = std::numeric_limits<double>::infinity();
-  casefile::CaseConfig c;
-  c.path = fmt::format("b6_nx{}.toml", nx);
-  c.mesh.box = {kDim, Vec3::Zero(), Vec3(12.0, 8.0, 2.0), {nx, nx * 8 / 12, nx * 2 / 12}};
-  casefile::CutSpec cut;
-  cut.origin = Vec3(0.0, 4.0, 0.0);
-  cut.edge1 = Vec3(4.0, 0.0, 0.0);
-  cut.edge2 = Vec3(0.0, 0.0, 2.0);
-  c.mesh.cuts = {cut};
-  auto& m = c.materials.emplace_back();
-  m.name = std::string(1, 'm');  // not from a literal: GCC 12's -Wrestrict false positive
-  m.E = 300e9;
-  m.nu = 0.25;
-  c.nonlocal.enabled = true;
-  c.nonlocal.kernel = casefile::KernelKind::gaussian;
-  c.nonlocal.horizon = 1.0;
-  c.nonlocal.length = 1.0 / 3.0;
-  c.nonlocal.quadrature = 2;
-  c.nonlocal.discretization = casefile::Discretization::discontinuous;
-  casefile::AlphaRegionSpec r;
-  r.shape = casefile::AlphaShapeKind::box;
-  r.lower = Vec3(3.0, 3.0, -inf);
-  r.upper = Vec3(inf, 5.0, inf);
-  r.transition = 1.5;
-  r.profile = casefile::AlphaProfile::cubic;
-  c.alpha.regions = {r};
-  c.node_sets = {node_set("top_left", Vec3(0.0, 8.0, 0.0), Vec3(2.0, 8.0, 2.0)),
-                 node_set("bottom_left", Vec3(0.0, 0.0, 0.0), Vec3(2.0, 0.0, 2.0))};
-  c.dirichlet = {opening("top_left", kOpening), opening("bottom_left", -kOpening)};
-  c.fracture.enabled = true;
-  c.fracture.s_crit = 1.0;  // set per benchmark
-  c.output.vtu = false;
-  return c;
 }
 
 /// One mesh: the model, the intact matrices, the elastic solution and the
@@ -169,7 +116,7 @@ struct Setup {
 
   explicit Setup(int n)
       : nx(n),
-        model(setup::build_discretization(b6_case(n))),
+        model(setup::build_discretization(bench::b6_case(n))),
         bc(setup::build_dirichlet(model)),
         intact(system::assemble_stiffness(model)),
         A(intact.K.duplicate()),
@@ -448,7 +395,7 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   la::PetscSession petsc(argc, argv);
   benchmark::AddCustomContext("omp_threads", std::to_string(omp_get_max_threads()));
-  benchmark::AddCustomContext("opening_u_d", fmt::format("{}", kOpening));
+  benchmark::AddCustomContext("opening_u_d", fmt::format("{}", bench::kOpening));
   register_all();
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

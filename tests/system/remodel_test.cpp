@@ -33,18 +33,20 @@ system::ConstrainedSystem make_system(const setup::Discretization& d, const bond
                                    setup::build_external_force(d));
 }
 
-/// α of `d` with a ball of α = 1 (radius 0.6, transition 0.375) at (3.2, 1).
-alpha::AlphaField grown(const setup::Discretization& d) {
-  return d.nonlocal->alpha.grown({{alpha::Ball{Vec3(3.2, 1.0, 0.0), 0.6}, 0.375, alpha::Profile::cubic}}, 2);
+/// α of `d` with a ball of α = 1 (radius r, transition 0.375) at (3.2, 1).
+alpha::AlphaField grown(const setup::Discretization& d, double r = 0.6) {
+  return d.nonlocal->alpha.grown({{alpha::Ball{Vec3(3.2, 1.0, 0.0), r}, 0.375, alpha::Profile::cubic}}, 2);
 }
 
 double max_abs(const Eigen::MatrixXd& m) {
   return m.cwiseAbs().maxCoeff();
 }
 
-TEST(Remodel, GrownAlphaWithCellsSwitchingToDGGivesTheAssembledSystem) {
+/// Remodels the plate's system to α grown by a ball of radius r and compares
+/// it with the system assembled for the grown model.
+void check_remodel(double radius, bool partial) {
   const auto before = setup::build_discretization(plate());
-  const auto after = setup::rebuild_for_alpha(before, grown(before));
+  const auto after = setup::rebuild_for_alpha(before, grown(before, radius));
   ASSERT_GT(after.dofmap.num_dofs(), before.dofmap.num_dofs()) << "no cell switched to DG";
   bonds::BrokenBonds failed(before.mesh.num_cells(), before.nonlocal->points.per_cell);
   for (Index e = 0; e < before.mesh.num_cells(); ++e) {
@@ -58,10 +60,13 @@ TEST(Remodel, GrownAlphaWithCellsSwitchingToDGGivesTheAssembledSystem) {
   auto sys = make_system(before, &failed);
   auto r = system::remodel(sys, before, after, &failed, setup::build_dirichlet(after),
                            setup::build_external_force(after));
-  std::printf("%zu of %d cells changed, dofs %d -> %d\n", r.cells.size(), before.mesh.num_cells(),
-              before.dofmap.num_dofs(), after.dofmap.num_dofs());
+  std::printf("%zu of %d cells changed, dofs %d -> %d, %s update\n", r.cells.size(), before.mesh.num_cells(),
+              before.dofmap.num_dofs(), after.dofmap.num_dofs(), r.partial ? "partial" : "full");
+  EXPECT_EQ(r.partial, partial) << "not the update meant to be tested";
   ASSERT_GT(r.cells.size(), 0u);
-  EXPECT_LT(r.cells.size(), static_cast<std::size_t>(before.mesh.num_cells()) / 2) << "not a local update";
+  if (partial) {
+    EXPECT_LT(r.cells.size(), static_cast<std::size_t>(before.mesh.num_cells()) / 2) << "not a local update";
+  }
   const auto ref = make_system(after, &failed);
   const Eigen::MatrixXd K = r.system->K().to_dense(), K_ref = ref.K().to_dense();
   const double scale = max_abs(K_ref);
@@ -83,6 +88,14 @@ TEST(Remodel, GrownAlphaWithCellsSwitchingToDGGivesTheAssembledSystem) {
     if (!r.system->prescribed(d)) {
       EXPECT_GT(diag[static_cast<std::size_t>(d)], 0.0) << "dof " << d;
     }
+}
+
+TEST(Remodel, GrownAlphaWithCellsSwitchingToDGGivesTheAssembledSystem) {
+  check_remodel(0.6, true);
+}
+
+TEST(Remodel, ALargeGrowthIsAssembledAnewAndGivesTheSameSystem) {
+  check_remodel(3.0, false);
 }
 
 TEST(Remodel, CarriedDisplacementIsTheSameField) {

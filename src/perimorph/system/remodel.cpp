@@ -5,6 +5,7 @@
 #include "perimorph/assembly/nonlocal_assembly.hpp"
 #include "perimorph/assembly/sparsity.hpp"
 #include "perimorph/core/error.hpp"
+#include "perimorph/system/stiffness.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -22,6 +23,15 @@ double since(clock::time_point t0) {
 
 bool same_cell_dofs(const dofs::DofMap& a, const dofs::DofMap& b, Index c) {
   return a.continuity(c) == b.continuity(c) && a.cell_nodes(c).size() == b.cell_nodes(c).size();
+}
+
+/// The reference diagonal carried over (transfer_dof_vector, max), the new
+/// system's own where nothing carries over and on prescribed dofs.
+void carry_reference(ConstrainedSystem& system, std::vector<double> reference) {
+  const std::vector<double>& fresh = system.reference_diagonal();
+  for (std::size_t k = 0; k < reference.size(); ++k)
+    if (!(reference[k] > 0.0) || system.prescribed(static_cast<Index>(k))) reference[k] = fresh[k];
+  system.set_reference_diagonal(std::move(reference));
 }
 
 /// Adds sign × each block to a matrix.
@@ -53,6 +63,21 @@ void add_cells(assembly::MatrixInserter& K, const setup::Discretization& disc, c
   assembly::NonlocalOptions options;
   options.include_pair = [&](Index e, Index f) { return flagged(e) || flagged(f); };
   assembly::assemble_nonlocal(disc.nonlocal_space(failed), inserter, options);
+}
+
+/// Cell pairs the non-local assembly of `disc` visits (α > 0 at either) with
+/// a flagged cell (all pairs when `in` is empty): the cost of assembling them.
+std::size_t assembled_pairs(const setup::Discretization& disc, const std::vector<char>& in) {
+  if (!disc.nonlocal) return 0;
+  const auto& graph = disc.nonlocal->graph;
+  const auto& amax = disc.nonlocal->points.cell_alpha_max;
+  std::size_t n = 0;
+  for (Index e = 0; e < graph.num_cells(); ++e)
+    for (Index f : graph.row(e)) {
+      if (f < e || amax[static_cast<std::size_t>(e)] + amax[static_cast<std::size_t>(f)] <= 0.0) continue;
+      if (in.empty() || in[static_cast<std::size_t>(e)] || in[static_cast<std::size_t>(f)]) ++n;
+    }
+  return n;
 }
 
 }  // namespace
@@ -119,6 +144,20 @@ Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& befor
   std::vector<char> in(static_cast<std::size_t>(before.mesh.num_cells()), 0);
   for (Index c : out.cells) in[static_cast<std::size_t>(c)] = 1;
 
+  // Subtracting and adding the changed cells' bonds costs about their pairs
+  // in both models; when that exceeds assembling the new model, assemble it.
+  out.partial = assembled_pairs(before, in) + assembled_pairs(after, in) <= assembled_pairs(after, {});
+  if (!out.partial) {
+    auto t0 = clock::now();
+    la::Matrix K = system::assemble_stiffness(after, failed).K;
+    out.times.add = since(t0);
+    t0 = clock::now();
+    std::vector<double> reference = transfer_dof_vector(before, after, system.reference_diagonal(), true);
+    out.system = std::make_unique<ConstrainedSystem>(after, std::move(K), std::move(bc), F);
+    carry_reference(*out.system, std::move(reference));
+    out.times.constrain = since(t0);
+    return out;
+  }
   // The scale of K before any cell is subtracted: what is dropped below must be round-off of it.
   double largest = 0.0;
   for (double d : system.reference_diagonal()) largest = std::max(largest, std::abs(d));
@@ -173,10 +212,7 @@ Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& befor
   t0 = clock::now();
   std::vector<double> reference = transfer_dof_vector(before, after, system.reference_diagonal(), true);
   out.system = std::make_unique<ConstrainedSystem>(after, std::move(K_new), std::move(bc), F);
-  const std::vector<double> fresh = out.system->reference_diagonal();
-  for (std::size_t k = 0; k < reference.size(); ++k)
-    if (!(reference[k] > 0.0) || out.system->prescribed(static_cast<Index>(k))) reference[k] = fresh[k];
-  out.system->set_reference_diagonal(std::move(reference));
+  carry_reference(*out.system, std::move(reference));
   out.times.constrain = since(t0);
   return out;
 }

@@ -50,6 +50,9 @@ struct RemodelTimes {
 struct Remodelled {
   std::unique_ptr<ConstrainedSystem> system;  ///< on `after`, solver not attached
   std::vector<Index> cells;                   ///< changed_cells(before, after)
+  /// The partial update was used (false: the changed cells' bond pairs, in
+  /// the old model and the new, outnumbered the new model's: assembled anew).
+  bool partial = true;
   RemodelTimes times;
 };
 
@@ -59,7 +62,11 @@ struct Remodelled {
 /// `F` are `after`'s constraints and loads (setup/boundary_conditions.hpp).
 /// The reference diagonal (ConstrainedSystem::without_stiffness) carries over
 /// through transfer_dof_vector (max). The result equals a system assembled
-/// from `after` with `failed` left out, to round-off.
+/// from `after` with `failed` left out, to round-off. Subtracting and adding
+/// costs about twice the assembly of the changed cells' bond pairs: when
+/// those (old and new) outnumber the new model's pairs, the new model is
+/// assembled instead (Remodelled::partial false), so the update never costs
+/// much more than an assembly.
 Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& before,
                    const setup::Discretization& after, const bonds::BrokenBonds* failed,
                    setup::DirichletData bc, std::span<const double> F);
