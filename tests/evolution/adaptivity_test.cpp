@@ -4,6 +4,8 @@
 // α = 1; the predictor starts a crack in a plate with no non-local zone,
 // before any bond fails where α < 1.
 
+#include "perimorph/casefile/parse_case.hpp"
+#include "perimorph/core/error.hpp"
 #include "perimorph/run/static_run.hpp"
 #include "perimorph/setup/discretization.hpp"
 #include "support/fracture_cases.hpp"
@@ -156,6 +158,24 @@ TEST(Adaptivity, PredictorStartsTheCrackWithNoInitialZone) {
     std::printf("  increment %d: %zu bonds failed, %zu balls, %d cells with α > 0, %d DG\n", r.increment,
                 r.bonds_broken, r.alpha_balls, r.nonlocal_cells, r.dg_cells);
   expect_failed_bonds_inside(run, c.nonlocal.horizon);
+}
+
+TEST(Adaptivity, ALatePredictorStopsTheRunWithAMessage) {
+  // The flagship plate with theta = 0.8: in its unstable increment a bond from
+  // a cell inside the zone into one with α < 1 fails before that cell's strain
+  // reaches 0.8 s_crit (examples/hole_plate_2d/README.md).
+  auto c = casefile::parse_case_file(std::string(PERIMORPH_SOURCE_DIR) + "/examples/hole_plate_2d/case.toml");
+  c.adaptivity.theta = 0.8;
+  const auto dir = scratch_dir("late");
+  try {
+    (void)run::run_static(setup::build_discretization(c), {dir, true});
+    FAIL() << "the predictor was not late: the check is not exercised";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("the predictor was late"), std::string::npos) << what;
+    EXPECT_NE(what.find("Lower [adaptivity] theta (now 0.8)"), std::string::npos) << what;
+    EXPECT_NE(what.find("Results of increments 1..17"), std::string::npos) << what;
+  }
 }
 
 }  // namespace
