@@ -146,16 +146,25 @@ def run(ctx):
         *(["Reduced size (CI): h = δ, where the crack advances a column of cells (δ wide) at a time, so the "
            "increments at which D jumps differ between models, and runs of seconds whose time is overhead: A1 and "
            "A3 are reported, not judged; A2 (the guarantee) is."] if ctx.reduced else []))
+    # One face column of crack (h × thickness) at the effective G_c of B6's ligament: the step in which the
+    # crack advances between DG cells (B6 report, crack length against u).
+    g_eff = 22.47 if not ctx.reduced else float("nan")
+    column = g_eff * h * 2.0
+    dmax = float(np.max(np.abs(D[late] - P_D[late])))
+    steps = dmax <= column
     rep.criterion("A1", "dissipated energy D(u) within 5 % of the fixed partition at every u where the fixed "
                   "partition has dissipated", f"max {100 * rel.max():.2f}% (at u = {u[worst]:.4g}); from 10 % of "
-                  f"D(u_d) on: max {100 * rel_late.max():.2f}%; at u_d {D[-1]:.4g} vs {P_D[-1]:.4g} "
-                  f"({100 * (D[-1] / P_D[-1] - 1):+.2f}%)", "≤ 5 % at every u",
+                  f"D(u_d) on: max {100 * rel_late.max():.2f}%, largest |ΔD| {dmax:.3g} mJ; at u_d {D[-1]:.4g} vs "
+                  f"{P_D[-1]:.4g} ({100 * (D[-1] / P_D[-1] - 1):+.2f}%)", "≤ 5 % at every u",
                   "same crack as the fixed partition, slightly more broken bonds",
                   passed=None if ctx.reduced else bool(rel.max() <= BAR_D),
-                  reason=None if ctx.reduced or rel.max() <= BAR_D else
-                  ("the first failures come at other increments in the two models (D small there); "
-                   f"from 10 % of D(u_d) on the difference is {100 * rel_late.max():.2f}%"
-                   if rel_late.max() <= BAR_D else None))
+                  reason=None if ctx.reduced or rel.max() <= BAR_D or not steps else
+                  (f"the crack advances a face column (h × t = {h * 2.0:g} mm², G_eff·h·t = {column:.3g} mJ) at a "
+                   "time, and the two models (other α near the tip) take a step at neighbouring increments: every "
+                   f"difference from 10 % of D(u_d) on is below one column ({dmax:.3g} mJ); before that D is a few "
+                   "mJ and one step is most of it"),
+                  detail="D adaptive − fixed partition per increment: " + ", ".join(
+                      f"{i + 1}: {D[i] - P_D[i]:+.3g}" for i in range(n_inc) if P_D[i] > 0 and abs(D[i] - P_D[i]) > 1e-9))
     nd, out, tot = guarantee(ad.dir, ad.path("*.pvd"), seed_radius, balls, h)
     rep.criterion("A2", "the α map follows the crack: every non-local point of a cell with failed bonds has "
                   "α = 1 within δ (sampled: the point, 26 directions at δ/2 and δ)",
@@ -163,10 +172,19 @@ def run(ctx):
                   passed=out == 0)
     ratio_wall = ad.wall_s / ff.wall_s
     ratio_cpu = ad.cpu_s / ff.cpu_s
+    final_share = A["nonlocal_cells"][-1] / math.prod(cells)
     rep.criterion("A3", "time: adaptive against a fixed run built from the final α (same binary, one thread)",
                   f"wall {ratio_wall:.3f} ({ad.wall_s:.0f} / {ff.wall_s:.0f} s), CPU {ratio_cpu:.3f} "
                   f"({ad.cpu_s:.0f} / {ff.cpu_s:.0f} s)", "wall ratio < 1", "about 30 % lower (ratio ≈ 0.7)",
-                  passed=None if ctx.reduced else bool(ratio_wall < 1))
+                  passed=None if ctx.reduced else bool(ratio_wall < 1),
+                  detail=f"The final α reaches {100 * final_share:.0f}% of the cells ({int(A['nonlocal_cells'][-1])} "
+                  f"of {math.prod(cells)}): the balls (α > 0 out to h_e + 2δ = {h + 2 * DELTA:g}) cover most of a "
+                  f"block {8 * DELTA:g} high, so from the middle of the run the adaptive model has "
+                  f"{100 * A['dofs'][n_inc // 2 - 1] / A['dofs'][-1]:.0f}% of the final model's unknowns and saves "
+                  f"little; it pays {A['remodel_time'][-1]:.0f} s of rebuilding and "
+                  f"{int(A['break_iterations'].sum())} re-solves (the fixed final run: "
+                  f"{int(F['break_iterations'].sum())}). The two runs ran one after the other with other work on the "
+                  "machine (load about 2 during both, not equal): wall and CPU ratios differ by 0.18.")
     FD = F["dissipated_energy"]
     rep.criterion("A4", "the fixed run built from the final α dissipates what the adaptive run does (same final "
                   "model: a check that the adaptive updates lose nothing)",
