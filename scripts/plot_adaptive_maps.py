@@ -60,7 +60,8 @@ def main():
             keep = np.abs(cen[:, 2] - z) <= 0.5 * size[:, 2] + 1e-12
         inc = int(re.search(r"_(\d+)\.vtu$", path).group(1))
         for i, (name, cmap) in enumerate((("alpha_mean", "viridis"), ("damage", "magma"))):
-            s = ax[i, j].scatter(cen[keep, 0], cen[keep, 1], c=data[name][keep], cmap=cmap, vmin=0, vmax=1,
+            top = 1.0 if i == 0 else max(1e-12, float(data[name].max()))  # damage: scaled to its largest value
+            s = ax[i, j].scatter(cen[keep, 0], cen[keep, 1], c=data[name][keep], cmap=cmap, vmin=0, vmax=top,
                                  marker="s", s=max(2.0, 6000.0 / keep.sum()))
             ax[i, j].set_aspect("equal")
             ax[i, j].set_title(f"{'α' if i == 0 else 'damage'}, increment {inc}")
