@@ -4,10 +4,13 @@
 // α = 1; the predictor starts a crack in a plate with no non-local zone,
 // before any bond fails where α < 1.
 
+#include "perimorph/evolution/adaptivity.hpp"
 #include "perimorph/casefile/parse_case.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/run/static_run.hpp"
+#include "perimorph/setup/boundary_conditions.hpp"
 #include "perimorph/setup/discretization.hpp"
+#include "perimorph/system/stiffness.hpp"
 #include "support/fracture_cases.hpp"
 
 #include <gtest/gtest.h>
@@ -78,6 +81,22 @@ TEST(Adaptivity, GrownFieldNeverDecreases) {
     }
   EXPECT_EQ(grown(Vec3(2.0, 1.2, 0.0)), 1.0);
   EXPECT_EQ(from_zero(Vec3(2.0, 1.2, 0.0)), 1.0);
+}
+
+TEST(Adaptivity, WithUpdateIncrementGrowthIsDueOnceAfterAllowGrowth) {
+  const auto disc = setup::build_discretization(adaptive(cracked_plate(0.5, 1, 0.001)));
+  system::ConstrainedSystem sys(disc, system::assemble_stiffness(disc).K, setup::build_dirichlet(disc),
+                                setup::build_external_force(disc));
+  evolution::RunState state(disc);
+  evolution::Adaptivity adaptivity(disc, 0.005);
+  // A failed bond far from the seed (cells 0 and 1, bottom left).
+  state.failed_in_order.push_back({0, 0, 1, 0});
+  EXPECT_TRUE(adaptivity.inspect(state, sys).quiet()) << "grew inside the bond-breaking loop";
+  adaptivity.allow_growth();
+  EXPECT_FALSE(adaptivity.inspect(state, sys).quiet());
+  // Quiet again: the growth allowed was for that inspect only.
+  state.failed_in_order.push_back({2, 0, 3, 0});
+  EXPECT_TRUE(adaptivity.inspect(state, sys).quiet()) << "growth stayed due after the adaptive step";
 }
 
 TEST(Adaptivity, RunWhoseAlphaNeverGrowsEqualsTheFixedRun) {

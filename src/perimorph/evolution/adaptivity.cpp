@@ -131,7 +131,10 @@ Proposal Adaptivity::inspect(const RunState& state, const system::ConstrainedSys
         }
     }
   }
-  if (spec.update == casefile::AdaptivityUpdate::iteration || growth_due_) {
+  // allow_growth() opens one inspect: growth from failed bonds is due once.
+  const bool grow = spec.update == casefile::AdaptivityUpdate::iteration || growth_due_;
+  growth_due_ = false;
+  if (grow) {
     for (; seen_ < failed.size(); ++seen_)
       for (Index c : {failed[seen_].e, failed[seen_].f}) propose(c, state.increment, false);
   }
@@ -154,7 +157,6 @@ void Adaptivity::join(std::vector<AlphaBall>& balls, RunState& state) {
 }
 
 Effect Adaptivity::apply(RunState& state, system::ConstrainedSystem& /*system*/) {
-  growth_due_ = false;
   join(silent_, state);
   join(proposed_, state);
   return Effect::rebuild;

@@ -50,8 +50,8 @@ class Adaptivity final : public Component {
   Effect apply(RunState& state, system::ConstrainedSystem& system) override;
   void rebind(const setup::Discretization& disc, RunState& state, system::ConstrainedSystem& system) override;
 
-  /// Lets the next inspect grow α from the failed bonds (update = "increment":
-  /// the run calls it when an increment has settled).
+  /// Lets the next inspect (that one only) grow α from the failed bonds
+  /// (update = "increment": the run calls it when an increment has settled).
   void allow_growth() { growth_due_ = true; }
   /// Joins to the state's α the balls inspect found to raise α at no
   /// quadrature point (the discretization stays the same: no rebuild); the
