@@ -140,9 +140,11 @@ Proposal Adaptivity::inspect(const RunState& state, const system::ConstrainedSys
   }
   // A ball that raises α at no quadrature point leaves the discretization as
   // it is: it joins α without a rebuild (join_silent).
-  for (const AlphaBall& b : proposed_)
-    if (!raises_alpha(b)) silent_.push_back(b);
-  std::erase_if(proposed_, [&](const AlphaBall& b) { return !raises_alpha(b); });
+  std::erase_if(proposed_, [&](const AlphaBall& b) {
+    if (raises_alpha(b)) return false;
+    silent_.push_back(b);
+    return true;
+  });
   return {proposed_.size()};
 }
 
