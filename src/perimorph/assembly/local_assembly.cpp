@@ -157,7 +157,27 @@ std::vector<double> strain_at_dim(const LocalSpace& s, Index c, const Vec3& xi, 
   return {eps.data(), eps.data() + fem::voigt_dim<D>};
 }
 
+template <int D>
+void strains_at_points_dim(const LocalSpace& s, Index c, std::span<const double> u, std::span<double> strain,
+                           std::span<double> volume) {
+  const fem::NodeCoords<D> X = cell_coordinates<D>(s.mesh, c);
+  const fem::ElementVector<D> ue = gather<D>(s.dofmap, c, u);
+  fem::ShapeGradients<D> g;
+  for (std::size_t q = 0; q < s.rule.size(); ++q) {
+    const double detJ = fem::q1_physical_gradients<D>(X, s.rule[q].xi, g);
+    const fem::VoigtVector<D> eps = fem::strain_displacement<D>(g) * ue;
+    for (int k = 0; k < fem::voigt_dim<D>; ++k)
+      strain[q * fem::voigt_dim<D> + static_cast<std::size_t>(k)] = eps[k];
+    volume[q] = s.rule[q].weight * detJ * s.scale;
+  }
+}
+
 }  // namespace
+
+void strains_at_points(const LocalSpace& space, Index c, std::span<const double> u, std::span<double> strain,
+                       std::span<double> volume) {
+  dispatch_dim(space.mesh.dim(), [&](auto D) { strains_at_points_dim<D()>(space, c, u, strain, volume); });
+}
 
 void assemble_elasticity(const LocalSpace& space, const fem::ConstitutiveField& C, MatrixInserter& K,
                          const std::function<bool(Index)>& include) {

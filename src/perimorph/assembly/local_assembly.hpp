@@ -59,6 +59,12 @@ struct CellFields {
 CellFields cell_strain_stress(const LocalSpace& space, const fem::ConstitutiveField& C,
                               std::span<const double> u);
 
+/// The strain (voigt_size(dim) values per point, point-major) and the volume
+/// weight w|J|·scale at every point of `space.rule` in cell c (a Q1 cell: not
+/// a DG degree 0 one) for the dof vector u. No allocation.
+void strains_at_points(const LocalSpace& space, Index c, std::span<const double> u, std::span<double> strain,
+                       std::span<double> volume);
+
 /// Strain at point ξ of cell c for the dof vector u (voigt_size(dim) values).
 std::vector<double> strain_at(const LocalSpace& space, Index c, const Vec3& xi, std::span<const double> u);
 

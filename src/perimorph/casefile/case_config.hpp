@@ -98,6 +98,23 @@ enum class MaterialKind { isotropic, orthotropic, transversely_isotropic };
 /// tensor (the physics layer applies both).
 enum class CauchyRule { exact, nearest };
 
+/// [material.damage]: the local damage law of THEORY §6 on this material
+/// (isotropic only). The stiffness splits into a residual branch (1 − d_c) C₀
+/// and a damageable one (d_c − d) C₀; d grows with the damage force
+/// Y = ½ ε : C₀ : ε past the threshold k0 + k1 d, irreversibly, up to d_c.
+/// With [nonlocal], the non-local micromodulus is calibrated to the residual
+/// branch and bonds may fail only where d = d_c.
+struct DamageSpec {
+  bool enabled = false;  ///< the table is present
+  double k0 = 0.0;       ///< damage-force threshold at onset (stress units), ≥ 0
+  double k1 = 0.0;       ///< hardening modulus of the threshold (stress units), > 0
+  /// Critical damage, 0 < d_c ≤ 1: where the local model stops (localization).
+  /// d_c < 1 hands the residual branch to the non-local model where reached;
+  /// with [nonlocal], d_c < 1 (d_c = 1 would leave it no stiffness).
+  double d_c = 1.0;
+  SourceLocation where;  ///< the [material.damage] header
+};
+
 /// [[material]]: assigned to a region ("all" = every cell not claimed by a
 /// later material). Parsed by parse_material.cpp.
 ///
@@ -147,6 +164,7 @@ struct MaterialSpec {
   /// The `cauchy` key; when absent, the material's header with that key name ('material[k].cauchy').
   SourceLocation cauchy_where;
   Mat3 axes = Mat3::Identity();
+  DamageSpec damage;  ///< [material.damage]; enabled = false: elastic
   SourceLocation where;
 };
 
@@ -311,6 +329,17 @@ struct AdaptivitySpec {
   SourceLocation where;
 };
 
+/// [damage]: the nonlinear solve of an increment with local damage (THEORY
+/// §6): fixed-point (secant) iterations {solve with the stiffness of the
+/// current d; update d from the solution} until no quadrature point's d
+/// changes by more than `tolerance` (absolute). Needs a material with
+/// [material.damage]; optional (defaults below) when one has it.
+struct DamageSolverSpec {
+  double tolerance = 1e-6;   ///< > 0 (d is dimensionless, 0 … d_c)
+  int max_iterations = 500;  ///< ≥ 1 damage updates per increment; more stops the run, keeping what was computed
+  SourceLocation where;      ///< the [damage] header (empty when absent)
+};
+
 struct CaseConfig {
   std::string path;   ///< the case file as given
   std::string title;  ///< optional [case] title
@@ -328,6 +357,13 @@ struct CaseConfig {
   AlphaSpec alpha;
   FractureSpec fracture;
   AdaptivitySpec adaptivity;
+  DamageSolverSpec damage;
+  /// True if some material has [material.damage].
+  bool has_damage() const {
+    for (const auto& m : materials)
+      if (m.damage.enabled) return true;
+    return false;
+  }
   int dim() const { return mesh.box.dim; }
 };
 

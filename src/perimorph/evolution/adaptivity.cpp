@@ -67,13 +67,13 @@ Adaptivity::Adaptivity(const setup::Discretization& disc, double s_crit) : disc_
   seeded_.assign(static_cast<std::size_t>(disc.mesh.num_cells()), 0);
 }
 
-void Adaptivity::propose(Index cell, int increment, bool predicted) {
+void Adaptivity::propose(Index cell, int increment, bool predicted, bool critical_damage) {
   char& seeded = seeded_[static_cast<std::size_t>(cell)];
   if (seeded) return;
   seeded = 1;
   const mesh::Mesh& m = disc_->mesh;
-  proposed_.push_back(
-      {increment, cell, m.cell_centroid(cell), cell_size(m, cell) + core_, transition_, predicted});
+  proposed_.push_back({increment, cell, m.cell_centroid(cell), cell_size(m, cell) + core_, transition_,
+                       predicted, critical_damage});
 }
 
 bool Adaptivity::raises_alpha(const AlphaBall& b) const {
@@ -135,6 +135,20 @@ Proposal Adaptivity::inspect(const RunState& state, const system::ConstrainedSys
   const bool grow = spec.update == casefile::AdaptivityUpdate::iteration || growth_due_;
   growth_due_ = false;
   if (grow) {
+    if (disc_->damage) {
+      const setup::DamageModel& dm = *disc_->damage;
+      const int npts = dm.points_per_cell;
+      for (Index c = 0; c < disc_->mesh.num_cells(); ++c) {
+        const int law = dm.law_of(c);
+        if (law < 0 || seeded_[static_cast<std::size_t>(c)]) continue;
+        const double d_c = dm.laws[static_cast<std::size_t>(law)].d_c;
+        for (int q = 0; q < npts; ++q)
+          if (setup::DamageModel::at(state.history, c, q, npts) >= d_c) {
+            propose(c, state.increment, false, true);
+            break;
+          }
+      }
+    }
     for (; seen_ < failed.size(); ++seen_)
       for (Index c : {failed[seen_].e, failed[seen_].f}) propose(c, state.increment, false);
   }

@@ -25,9 +25,10 @@ struct AlphaBall {
   int increment = 0;  ///< the increment whose state added it
   Index cell = 0;     ///< the cell it is centred on
   Vec3 center = Vec3::Zero();
-  double radius = 0.0;      ///< α = 1 inside
-  double transition = 0.0;  ///< α falls to 0 over this width beyond the radius
-  bool predicted = false;   ///< added by the predictor (no failed bond in the cell yet)
+  double radius = 0.0;           ///< α = 1 inside
+  double transition = 0.0;       ///< α falls to 0 over this width beyond the radius
+  bool predicted = false;        ///< added by the predictor (no failed bond in the cell yet)
+  bool critical_damage = false;  ///< added because the cell's damage reached d_c (THEORY §6)
 };
 
 class Adaptivity final : public Component {
@@ -40,7 +41,9 @@ class Adaptivity final : public Component {
   /// cells with α < 1 at a non-local point whose largest principal strain at
   /// a local quadrature point exceeds θ·s_crit; when growth is due (update =
   /// "iteration", or allow_growth() since the last apply), the cells of the
-  /// bonds failed since the last growth. Balls that raise α at no non-local
+  /// bonds failed since the last growth and, with [material.damage], the
+  /// cells with a local quadrature point at d = d_c (THEORY §6: α = 1 holds
+  /// every point where the damage is critical). Balls that raise α at no non-local
   /// or local quadrature point are not proposed (a run whose α never grows
   /// equals the fixed run): they join α with the next apply or join_silent.
   /// With the predictor, throws Error if
@@ -61,7 +64,7 @@ class Adaptivity final : public Component {
   const std::vector<AlphaBall>& balls() const { return balls_; }
 
  private:
-  void propose(Index cell, int increment, bool predicted);
+  void propose(Index cell, int increment, bool predicted, bool critical_damage = false);
   /// Adds `balls` to the state's α and to balls_; empties it.
   void join(std::vector<AlphaBall>& balls, RunState& state);
   /// True if the ball raises α at some non-local or local quadrature point

@@ -41,8 +41,13 @@ Effect BondFailure::apply(RunState& state, system::ConstrainedSystem& system) {
 std::vector<assembly::StretchedBond> BondFailure::select(const RunState& state) const {
   std::vector<assembly::StretchedBond> over = assembly::bonds_over(space(state), state.u, s_crit_);
   const auto& spec = disc_->config.fracture;
+  const setup::DamageModel* damage = disc_->damage ? &*disc_->damage : nullptr;
   std::erase_if(over, [&](const assembly::StretchedBond& b) {
     if (!spec.intra_cell_failure && b.id.e == b.id.f) return true;
+    // THEORY §6: a bond may fail only where the damage has reached d_c (both ends).
+    if (damage &&
+        !(damage->critical(state.history, b.id.e, b.id.g) && damage->critical(state.history, b.id.f, b.id.h)))
+      return true;
     return !no_fail_.empty() &&
            (no_fail_[static_cast<std::size_t>(b.id.e)] || no_fail_[static_cast<std::size_t>(b.id.f)]);
   });

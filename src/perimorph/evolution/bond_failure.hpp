@@ -72,7 +72,8 @@ class BondFailure final : public Component {
   /// s > s_crit, or with rule = fraction those with s ≥ fraction · the
   /// largest such s; bonds with an end in a [fracture] no_fail region, and
   /// with intra_cell_failure = false bonds between two points of one cell,
-  /// are never selected. Grouped by cell pair.
+  /// and with [material.damage] bonds with an end whose damage is below d_c
+  /// (THEORY §6), are never selected. Grouped by cell pair.
   std::vector<assembly::StretchedBond> select(const RunState& state) const;
 
   /// Breaks `bonds` (from select at the state's displacement): records them in

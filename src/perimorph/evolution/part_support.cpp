@@ -16,10 +16,13 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
   parts_ = 0;
   const std::size_t first = seen_;
   seen_ = state.failed_in_order.size();
-  if (first == seen_) return {};
+  const bool downdated = system.downdate_count() != downdates_seen_;
+  downdates_seen_ = system.downdate_count();
+  if (first == seen_ && !downdated) return {};
   const int dim = disc_->dim();
   const std::vector<double>& applied_force = system.applied_force();
-  // A free dof whose every bond has failed has a zero row: the matrix turns
+  // A free dof whose every bond has failed (or whose cells have all lost
+  // their stiffness to damage, d = 1) has a zero row: the matrix turns
   // singular. Such a dof is coupled to nothing, so holding it at zero by a
   // spring of its initial stiffness changes no other dof.
   detached_ = system.without_stiffness(system.last_downdated());
@@ -28,7 +31,7 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
     if (force != 0.0) {
       const Vec3 x = disc_->dofmap.node_coordinate(d / dim);
       throw Error(
-          fmt::format("bond failures have left the node at ({:g}, {:g}, {:g}) with no stiffness in "
+          fmt::format("bond failures or damage have left the node at ({:g}, {:g}, {:g}) with no stiffness in "
                       "direction {} while an applied force {:g} acts on it: there is no quasi-static "
                       "equilibrium",
                       x.x(), x.y(), x.z(), "xyz"[d % dim], force));
@@ -37,6 +40,7 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
   // A cell pair that lost its last intact bond may have cut a part free
   // (floating_parts.hpp). The bonds fail grouped by cell pair: each pair is
   // looked at once.
+  if (first == seen_) return {detached_.size()};
   const assembly::NonlocalSpace space = disc_->nonlocal_space(&state.failed);
   bool separated = false;
   for (std::size_t k = first; k < seen_ && !separated; ++k) {
@@ -76,12 +80,17 @@ void PartSupport::rebind(const setup::Discretization& disc, RunState& state,
                          system::ConstrainedSystem& system) {
   disc_ = &disc;
   state.held_dofs.clear();
-  if (state.failed_in_order.empty()) return;
+  downdates_seen_ = system.downdate_count();
+  if (state.failed_in_order.empty() && state.history.empty()) return;
   std::vector<Index> free;
   for (Index d = 0; d < disc.dofmap.num_dofs(); ++d)
     if (!system.prescribed(d)) free.push_back(d);
   const std::vector<Index> detached = system.without_stiffness(free);
   system.hold(detached, true);
+  if (state.failed_in_order.empty()) {
+    state.held_dofs = detached;
+    return;
+  }
   std::vector<Index> held = detached;
   const auto& prescribed = system.bc().dofs;
   held.insert(held.end(), prescribed.begin(), prescribed.end());

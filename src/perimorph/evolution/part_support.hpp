@@ -20,8 +20,8 @@ class PartSupport final : public Component {
   explicit PartSupport(const setup::Discretization& disc) : disc_(&disc) {}
 
   std::string_view name() const override { return "support of parts cut free"; }
-  /// Looks at the bonds failed since the last inspect: the free dofs the
-  /// system's last downdate left with no stiffness, and, if one of their cell
+  /// Looks at the bonds failed and the damage grown since the last inspect:
+  /// the free dofs the system's last downdate left with no stiffness, and, if one of their cell
   /// pairs has no intact bond left, the parts cut free. Throws Error for a
   /// detached dof under an applied force, or a part whose applied forces do
   /// work on a free rigid-body mode: there is no quasi-static equilibrium.
@@ -39,6 +39,7 @@ class PartSupport final : public Component {
  private:
   const setup::Discretization* disc_;  ///< non-owning: the run's current discretization
   std::size_t seen_ = 0;               ///< failed bonds already looked at (RunState::failed_in_order)
+  std::size_t downdates_seen_ = 0;     ///< ConstrainedSystem::downdate_count() at the last inspect
   std::vector<Index> detached_, pins_;
   int parts_ = 0;
 };

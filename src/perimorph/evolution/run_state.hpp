@@ -20,18 +20,26 @@ namespace perimorph::evolution {
 
 /// The energy balance of THEORY §5: the work W of the external forces, the
 /// strain energy U of the last state, the fracture dissipation D (every failed
-/// bond at s_crit) and the overshoot of the finite load steps (what failed
-/// bonds held beyond s_crit). W + ΔU_α − U − D − overshoot ≥ 0 is the energy
-/// released by re-equilibration after failures (ΔU_α: model_change).
+/// bond at s_crit), the damage dissipation D_d (THEORY §6) and the overshoot
+/// of the finite load steps. W + ΔU_α − U − D − D_d − overshoot ≥ 0 is the
+/// energy released by re-equilibration after failures and damage updates
+/// (ΔU_α: model_change); it vanishes with the load step.
 struct EnergyLedger {
   double external_work = 0.0;  ///< W, cumulative
   double strain_energy = 0.0;  ///< U, of the last recorded state
   double dissipated = 0.0;     ///< D, cumulative
-  double overshoot = 0.0;      ///< cumulative
+  /// Cumulative: what failed bonds held beyond s_crit, and what the damage
+  /// updates released at fixed u beyond the dissipation at the threshold.
+  double overshoot = 0.0;
+  /// Energy the local damage dissipated, ∫ (k0 + k1 d) dd = k0 d + ½ k1 d²
+  /// summed over the local quadrature points (THEORY §6), cumulative.
+  double damage_dissipated = 0.0;
   /// Strain energy α's growth added at fixed displacement (the stiffness
   /// changed, no work was done), cumulative; 0 without [adaptivity].
   double model_change = 0.0;
-  double released() const { return external_work + model_change - strain_energy - dissipated - overshoot; }
+  double released() const {
+    return external_work + model_change - strain_energy - dissipated - damage_dissipated - overshoot;
+  }
 };
 
 struct RunState {
@@ -50,7 +58,9 @@ struct RunState {
   std::vector<Index> held_dofs;                ///< dofs held by springs: detached dofs, pins of parts
   std::size_t detached_dofs = 0;               ///< free dofs left with no stiffness, cumulative
   std::size_t floating_parts = 0;              ///< parts cut free and held, cumulative
-  std::vector<double> history;                 ///< at quadrature points; empty: no history-dependent law
+  /// The damage d at every local quadrature point (cell-major, THEORY §6);
+  /// empty without [material.damage].
+  std::vector<double> history;
   EnergyLedger energy;
 };
 

@@ -32,4 +32,10 @@ void ConstitutiveField::set_cell_points(Index c, std::span<const Eigen::MatrixXd
   per_point_[static_cast<std::size_t>(c)] = 1;
 }
 
+void ConstitutiveField::add_to_all(const Eigen::MatrixXd& T) {
+  PERIMORPH_ASSERT(T.rows() == nv_ && T.cols() == nv_, "tensor size does not match the model dimension");
+  const auto n = static_cast<std::size_t>(nv_ * nv_);
+  for (std::size_t k = 0; k < data_.size(); ++k) data_[k] += T.data()[k % n];
+}
+
 }  // namespace perimorph::fem

@@ -30,6 +30,9 @@ class ConstitutiveField {
   /// Cell c uses one tensor per point (points_per_cell of them, in order).
   void set_cell_points(Index c, std::span<const Eigen::MatrixXd> C);
 
+  /// Adds T to every stored tensor, so to C at every point of every cell.
+  void add_to_all(const Eigen::MatrixXd& T);
+
   /// Column-major nv × nv tensor at point q of cell c.
   const double* at(Index c, int q) const {
     assert(c >= 0 && c < num_cells() && q >= 0 && q < npts_);

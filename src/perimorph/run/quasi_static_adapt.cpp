@@ -67,8 +67,9 @@ void QuasiStaticRun::rebuild() {
   progress_->phase("remodel");
   const double before_energy = strain_energy(*system_, u_, internal_);
   auto next = std::make_unique<setup::Discretization>(setup::rebuild_for_alpha(*disc_, state_.alpha));
-  system::Remodelled r = system::remodel(*system_, *disc_, *next, &state_.failed,
-                                         setup::build_dirichlet(*next), setup::build_external_force(*next));
+  system::Remodelled r =
+      system::remodel(*system_, *disc_, *next, &state_.failed, setup::build_dirichlet(*next),
+                      setup::build_external_force(*next), state_.history);
   const Index n = next->dofmap.num_dofs();
   state_.u = system::transfer_dof_vector(*disc_, *next, state_.u);
   u_prev_ = system::transfer_dof_vector(*disc_, *next, u_prev_);

@@ -62,6 +62,8 @@ QuasiStaticRun::QuasiStaticRun(const setup::Discretization& disc, const RunOptio
       fracture_ = f;
     else if (auto* a = dynamic_cast<evolution::Adaptivity*>(c.get()))
       adaptivity_ = a;
+    else if (auto* d = dynamic_cast<evolution::LocalDamage*>(c.get()))
+      damage_ = d;
 
   progress_->phase("assembly");
   system::AssembledStiffness assembled = system::assemble_stiffness(disc);
@@ -151,9 +153,10 @@ void QuasiStaticRun::warn_unused_options() {
 }
 
 bool QuasiStaticRun::evolve() {
-  bool changed = false;
+  bool changed = false, damage_changed = false;
   bonds_failed_in_pass_ = false;
   for (auto& component : setup_.components) {
+    if (damage_changed && component.get() == fracture_) continue;
     evolution::Proposal proposal;
     try {
       proposal = component->inspect(state_, *system_);
@@ -161,6 +164,11 @@ bool QuasiStaticRun::evolve() {
       stop_unsupported(e);
     }
     if (proposal.quiet()) continue;
+    if (component.get() == damage_) {
+      if (rec_.damage_iterations == disc_->config.damage.max_iterations) stop_damage_unsettled();
+      ++rec_.damage_iterations;
+      damage_changed = true;
+    }
     if (!changed) {
       if (rec_.break_iterations == disc_->config.fracture.max_iterations) stop_unsettled(proposal.changes);
       ++rec_.break_iterations;
@@ -206,10 +214,9 @@ void QuasiStaticRun::stop_unsettled(std::size_t over) {
 void QuasiStaticRun::stop_unsupported(const std::exception& e) {
   progress_->finish();
   const int i = state_.increment;
-  output_->write_increment_vtu(*disc_, i, state_.load_factor, state_.u,
-                               fracture_ ? fracture_->fields(state_) : evolution::FractureFields{});
+  write_vtu(i);
   throw Error(
-      fmt::format("increment {}/{} (load factor {}), bond-breaking iteration {}: {}. The displacement "
+      fmt::format("increment {}/{} (load factor {}), iteration {}: {}. The displacement "
                   "before this iteration is written as increment {} ({}); {}",
                   i, increments(), state_.load_factor, rec_.break_iterations, e.what(), i,
                   output_->writes_vtu() ? output_->vtu_path(i) : "no VTU: [output] vtu = false", kept()));
@@ -220,11 +227,30 @@ void QuasiStaticRun::record(bool force_vtu) {
   const int dim = disc_->dim();
   const std::vector<double>& uv = state_.u;
   const std::vector<double>& F = system_->applied_force();
-  if (fracture_) {
-    if (rec_.break_iterations > 0) {
-      system_->K().mult(u_, internal_);
-      fint_ = internal_.to_std();
+  if ((fracture_ || damage_) && rec_.break_iterations > 0) {
+    system_->K().mult(u_, internal_);
+    fint_ = internal_.to_std();
+  }
+  if (damage_) {
+    const evolution::EnergyLedger& e = state_.energy;
+    rec_.damage_dissipated = e.damage_dissipated;
+    rec_.overshoot = e.overshoot;
+    const auto& dm = *disc_->damage;
+    const int npts = dm.points_per_cell;
+    rec_.damaged_points = rec_.critical_points = 0;
+    rec_.max_damage = 0.0;
+    for (Index c = 0; c < disc_->mesh.num_cells(); ++c) {
+      const int law = dm.law_of(c);
+      if (law < 0) continue;
+      for (int q = 0; q < npts; ++q) {
+        const double d = setup::DamageModel::at(state_.history, c, q, npts);
+        rec_.damaged_points += d > 0.0;
+        rec_.critical_points += d >= dm.laws[static_cast<std::size_t>(law)].d_c;
+        rec_.max_damage = std::max(rec_.max_damage, d);
+      }
     }
+  }
+  if (fracture_) {
     rec_.bonds_broken = state_.failed.size();
     rec_.dissipated = state_.energy.dissipated;
     rec_.overshoot = state_.energy.overshoot;
@@ -265,18 +291,36 @@ void QuasiStaticRun::record(bool force_vtu) {
   rec_.iterations = summary_.last_solve.iterations;
   rec_.relative_residual = summary_.last_solve.relative_residual;
   rec_.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  rec_.released =
-      fracture_ ? work + state_.energy.model_change - energy - rec_.dissipated - rec_.overshoot : 0.0;
+  rec_.released = fracture_ || damage_ ? state_.energy.released() : 0.0;
   output_->add_row(rec_);
   const int i = state_.increment;
-  if (force_vtu || i % disc_->config.output.every == 0 || i == increments())
-    output_->write_increment_vtu(*disc_, i, lambda, uv,
-                                 fracture_ ? fracture_->fields(state_) : evolution::FractureFields{});
+  if (force_vtu || i % disc_->config.output.every == 0 || i == increments()) write_vtu(i);
   summary_.displacement = uv;
   summary_.reactions = rec_.reactions;
   summary_.strain_energy = energy;
   summary_.external_work = work;
   summary_.history.push_back(rec_);
+}
+
+void QuasiStaticRun::write_vtu(int increment) {
+  output_->write_increment_vtu(*disc_, increment, state_.load_factor, state_.u,
+                               fracture_ ? fracture_->fields(state_) : evolution::FractureFields{},
+                               damage_ ? damage_->fields(state_) : evolution::DamageFields{});
+}
+
+void QuasiStaticRun::stop_damage_unsettled() {
+  record(true);
+  progress_->finish();
+  const int i = state_.increment;
+  const int n = disc_->config.damage.max_iterations;
+  throw Error(fmt::format(
+      "increment {}/{} (load factor {}): the damage still changes by {:.3g} (tolerance {:g}) after {} "
+      "fixed-point iterations: the local damage does not settle at this load (a snap-back, or a "
+      "load step too large for the secant iteration). Use smaller load increments, or raise [damage] "
+      "max_iterations (now {}) or tolerance. The state after the last iteration is kept as increment "
+      "{} ({}). {}",
+      i, increments(), state_.load_factor, damage_->largest_change(), disc_->config.damage.tolerance, n, n, i,
+      output_->writes_vtu() ? output_->vtu_path(i) : output_->csv_path(), kept()));
 }
 
 void QuasiStaticRun::write_increment() {
@@ -287,11 +331,14 @@ void QuasiStaticRun::write_increment() {
   }
   record(false);
   summary_.increments_done = state_.increment;
-  progress_->update(state_.increment,
-                    fracture_
-                        ? fmt::format("{} its, {} bonds failed ({} iterations)", rec_.iterations,
-                                      rec_.bonds_broken_increment, rec_.break_iterations)
-                        : fmt::format("{} its, residual {:.1e}", rec_.iterations, rec_.relative_residual));
+  progress_->update(
+      state_.increment,
+      damage_     ? fmt::format("{} its, {} damage iterations, max d {:.3g}{}", rec_.iterations,
+                                rec_.damage_iterations, rec_.max_damage,
+                            fracture_ ? fmt::format(", {} bonds failed", rec_.bonds_broken_increment) : "")
+      : fracture_ ? fmt::format("{} its, {} bonds failed ({} iterations)", rec_.iterations,
+                                rec_.bonds_broken_increment, rec_.break_iterations)
+                  : fmt::format("{} its, residual {:.1e}", rec_.iterations, rec_.relative_residual));
 }
 
 RunSummary QuasiStaticRun::finish() {

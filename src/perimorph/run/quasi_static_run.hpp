@@ -9,6 +9,7 @@
 
 #include "perimorph/evolution/adaptivity.hpp"
 #include "perimorph/evolution/bond_failure.hpp"
+#include "perimorph/evolution/local_damage.hpp"
 #include "perimorph/evolution/run_state.hpp"
 #include "perimorph/run/run_output.hpp"
 #include "perimorph/run/static_run.hpp"
@@ -43,6 +44,10 @@ class QuasiStaticRun {
   void solve();
   /// Every component in order: inspect, and apply its proposal unless quiet;
   /// then the solver takes the changed operator. False when all were quiet.
+  /// While the damage changes, bond failure waits for the next pass (bonds
+  /// fail irreversibly: they are judged on a damage-converged solution).
+  /// With damage, an increment whose damage still moves after [damage]
+  /// max_iterations updates stops the run (Error) with its state written.
   /// With [fracture], an increment still changing after max_iterations passes
   /// stops the run (Error) with its state written.
   bool evolve();
@@ -64,6 +69,10 @@ class QuasiStaticRun {
   /// "Results of increments 1..N are in DIR" for messages.
   std::string kept() const;
   [[noreturn]] void stop_unsettled(std::size_t over);
+  /// The damage still moves after [damage] max_iterations updates.
+  [[noreturn]] void stop_damage_unsettled();
+  /// The VTU fields of the state's fracture and damage (empty where absent).
+  void write_vtu(int increment);
   [[noreturn]] void stop_unsupported(const std::exception& e);
   void warn_unused_options();
   /// Lets the adaptivity component grow α now; true if it did (and the run
@@ -84,6 +93,7 @@ class QuasiStaticRun {
   std::unique_ptr<system::ConstrainedSystem> system_;
   evolution::BondFailure* fracture_ = nullptr;   ///< non-owning: the bond-failure component, if any
   evolution::Adaptivity* adaptivity_ = nullptr;  ///< non-owning: the adaptivity component, if any
+  evolution::LocalDamage* damage_ = nullptr;     ///< non-owning: the damage component, if any
   bool bonds_failed_in_pass_ = false;  ///< the last evolve pass broke bonds (fracture_->proposed() is new)
   std::size_t balls_written_ = 0;      ///< adaptivity_->balls() already in the output
   double remodel_seconds_ = 0.0;       ///< spent in rebuild(), cumulative

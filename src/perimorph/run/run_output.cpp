@@ -46,7 +46,8 @@ RunOutput::RunOutput(const setup::Discretization& model, std::string directory, 
       basename_(std::move(basename)),
       dim_(model.dim()),
       fracture_(model.config.fracture.enabled),
-      adaptive_(model.config.adaptivity.enabled) {
+      adaptive_(model.config.adaptivity.enabled),
+      damage_(model.damage.has_value()) {
   std::error_code ec;
   std::filesystem::create_directories(directory_, ec);
   if (ec) throw InputError(fmt::format("cannot create output directory '{}': {}", directory_, ec.message()));
@@ -62,6 +63,12 @@ RunOutput::RunOutput(const setup::Discretization& model, std::string directory, 
          {"dissipated_energy", "dissipated_increment", "overshoot_energy", "released_energy", "bonds_broken",
           "bonds_broken_increment", "break_iterations", "crack_area", "broken_face_area", "floating_parts"})
       columns.emplace_back(c);
+  if (damage_) {
+    if (!fracture_) columns.insert(columns.end(), {"overshoot_energy", "released_energy"});
+    for (const char* c :
+         {"damage_dissipated_energy", "damage_iterations", "damaged_points", "critical_points", "max_damage"})
+      columns.emplace_back(c);
+  }
   if (adaptive_)
     for (const char* c :
          {"dofs", "dg_cells", "nonlocal_cells", "alpha_balls", "model_energy_change", "remodel_time"})
@@ -70,7 +77,8 @@ RunOutput::RunOutput(const setup::Discretization& model, std::string directory, 
   if (adaptive_)
     alpha_csv_ = std::make_unique<io::CsvTable>(
         (std::filesystem::path(directory_) / (basename_ + "_alpha.csv")).string(),
-        std::vector<std::string>{"increment", "cell", "x", "y", "z", "radius", "transition", "predicted"});
+        std::vector<std::string>{"increment", "cell", "x", "y", "z", "radius", "transition", "predicted",
+                                 "critical_damage"});
   if (fracture_)
     failures_csv_ = std::make_unique<io::CsvTable>(
         failures_csv_path(),
@@ -98,7 +106,8 @@ std::string RunOutput::failures_csv_path() const {
 }
 
 void RunOutput::write_increment_vtu(const setup::Discretization& model, int increment, double load_factor,
-                                    std::span<const double> u, const evolution::FractureFields& fracture) {
+                                    std::span<const double> u, const evolution::FractureFields& fracture,
+                                    const evolution::DamageFields& damage) {
   if (!pvd_) return;
   const auto& dm = model.dofmap;
   io::UnstructuredGrid grid;
@@ -134,7 +143,13 @@ void RunOutput::write_increment_vtu(const setup::Discretization& model, int incr
     grid.point_data.push_back(std::move(alpha));
   }
 
-  const auto fields = assembly::cell_strain_stress(model.local_space(), model.stiffness, u);
+  // The stress of the damaged stiffness (THEORY §6) where the damage has grown.
+  const fem::ConstitutiveField damaged =
+      model.damage && !damage.history.empty()
+          ? setup::damaged_stiffness(model.stiffness, *model.damage, damage.history)
+          : fem::ConstitutiveField(0, 0, 0);
+  const auto fields = assembly::cell_strain_stress(model.local_space(),
+                                                   damage.history.empty() ? model.stiffness : damaged, u);
   const int nv = fem::voigt_size(dim_);
   io::Field strain{"strain", 9, {}}, stress{"stress", 9, {}}, region{"region", 1, {}},
       energy{"strain_energy_density", 1, {}};
@@ -168,6 +183,11 @@ void RunOutput::write_increment_vtu(const setup::Discretization& model, int incr
   }
   if (!fracture.damage.empty()) grid.cell_data.push_back({"damage", 1, fracture.damage});
   if (!fracture.dissipated.empty()) grid.cell_data.push_back({"dissipated_energy", 1, fracture.dissipated});
+  if (!damage.mean.empty()) {
+    grid.cell_data.push_back({"local_damage", 1, damage.mean});
+    grid.cell_data.push_back({"local_damage_max", 1, damage.max});
+    grid.cell_data.push_back({"damage_dissipated_energy", 1, damage.dissipated});
+  }
 
   io::write_vtu(vtu_path(increment), grid);
   pvd_->add(load_factor, std::filesystem::path(vtu_path(increment)).filename().string());
@@ -184,6 +204,12 @@ void RunOutput::add_row(const IncrementRecord& r) {
                            static_cast<double>(r.bonds_broken), static_cast<double>(r.bonds_broken_increment),
                            static_cast<double>(r.break_iterations), r.crack_area, r.broken_face_area,
                            static_cast<double>(r.floating_parts)});
+  if (damage_) {
+    if (!fracture_) row.insert(row.end(), {r.overshoot, r.released});
+    row.insert(row.end(),
+               {r.damage_dissipated, static_cast<double>(r.damage_iterations),
+                static_cast<double>(r.damaged_points), static_cast<double>(r.critical_points), r.max_damage});
+  }
   if (adaptive_)
     row.insert(row.end(), {static_cast<double>(r.dofs), static_cast<double>(r.dg_cells),
                            static_cast<double>(r.nonlocal_cells), static_cast<double>(r.alpha_balls),
@@ -195,7 +221,8 @@ void RunOutput::add_alpha_balls(std::span<const evolution::AlphaBall> balls) {
   if (!alpha_csv_) return;
   for (const auto& b : balls)
     alpha_csv_->add_row({static_cast<double>(b.increment), static_cast<double>(b.cell), b.center.x(),
-                         b.center.y(), b.center.z(), b.radius, b.transition, b.predicted ? 1.0 : 0.0});
+                         b.center.y(), b.center.z(), b.radius, b.transition, b.predicted ? 1.0 : 0.0,
+                         b.critical_damage ? 1.0 : 0.0});
 }
 
 void RunOutput::add_failure_row(int increment, int iteration, std::size_t bonds,

@@ -6,6 +6,7 @@
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/evolution/adaptivity.hpp"
 #include "perimorph/evolution/bond_failure.hpp"
+#include "perimorph/evolution/local_damage.hpp"
 #include "perimorph/io/csv_table.hpp"
 #include "perimorph/io/pvd_writer.hpp"
 #include "perimorph/setup/discretization.hpp"
@@ -43,6 +44,12 @@ struct IncrementRecord {
   std::size_t alpha_balls = 0;   ///< balls added to α, cumulative
   double model_change = 0.0;     ///< EnergyLedger::model_change, cumulative
   double remodel_seconds = 0.0;  ///< rebuilding the discretization and the system, cumulative
+  // Runs with [material.damage] only (THEORY §6):
+  double damage_dissipated = 0.0;   ///< EnergyLedger::damage_dissipated, cumulative
+  int damage_iterations = 0;        ///< damage updates (fixed-point iterations) in this increment
+  std::size_t damaged_points = 0;   ///< local quadrature points with d > 0
+  std::size_t critical_points = 0;  ///< local quadrature points with d = d_c
+  double max_damage = 0.0;          ///< largest d
 };
 
 class RunOutput {
@@ -53,7 +60,8 @@ class RunOutput {
             std::vector<std::string> reaction_names);
 
   void write_increment_vtu(const setup::Discretization& model, int increment, double load_factor,
-                           std::span<const double> u, const evolution::FractureFields& fracture = {});
+                           std::span<const double> u, const evolution::FractureFields& fracture = {},
+                           const evolution::DamageFields& damage = {});
   void add_row(const IncrementRecord& r);
   /// Fracture runs: one row per bond-breaking iteration in BASENAME_failures.csv
   /// (increment, iteration, bonds failed, their energy at s_crit and beyond,
@@ -81,7 +89,7 @@ class RunOutput {
  private:
   std::string directory_, basename_;
   int dim_;
-  bool fracture_ = false, adaptive_ = false;
+  bool fracture_ = false, adaptive_ = false, damage_ = false;
   std::unique_ptr<io::CsvTable> csv_, failures_csv_, failed_bonds_csv_, alpha_csv_;
   std::unique_ptr<io::PvdCollection> pvd_;
 };

@@ -2,11 +2,13 @@
 
 #include "perimorph/evolution/adaptivity.hpp"
 #include "perimorph/evolution/bond_failure.hpp"
+#include "perimorph/evolution/local_damage.hpp"
 #include "perimorph/evolution/part_support.hpp"
 #include "perimorph/run/quasi_static_run.hpp"
 #include "perimorph/setup/critical_stretch.hpp"
 
 #include <filesystem>
+#include <limits>
 
 namespace perimorph::run {
 
@@ -22,14 +24,15 @@ RunSetup prepare_run(const setup::Discretization& disc) {
   setup.bc = setup::build_dirichlet(disc);
   setup.F = setup::build_external_force(disc);
   setup.sets = setup::reaction_sets(disc);
-  if (disc.config.fracture.enabled) {
-    // The predictor must see a solve before bond failure does (adaptivity.hpp).
-    if (disc.config.adaptivity.enabled)
-      setup.components.push_back(
-          std::make_unique<evolution::Adaptivity>(disc, setup::critical_stretch(disc)));
-    setup.components.push_back(std::make_unique<evolution::BondFailure>(disc));
-    setup.components.push_back(std::make_unique<evolution::PartSupport>(disc));
-  }
+  const bool fracture = disc.config.fracture.enabled, damage = disc.damage.has_value();
+  // The predictor must see a solve before bond failure does (adaptivity.hpp);
+  // bonds fail only where the damage is critical, judged after its update.
+  if (disc.config.adaptivity.enabled)
+    setup.components.push_back(std::make_unique<evolution::Adaptivity>(
+        disc, fracture ? setup::critical_stretch(disc) : std::numeric_limits<double>::quiet_NaN()));
+  if (damage) setup.components.push_back(std::make_unique<evolution::LocalDamage>(disc));
+  if (fracture) setup.components.push_back(std::make_unique<evolution::BondFailure>(disc));
+  if (fracture || damage) setup.components.push_back(std::make_unique<evolution::PartSupport>(disc));
   return setup;
 }
 
@@ -38,11 +41,13 @@ RunSummary run_static(const setup::Discretization& disc, const RunOptions& optio
   for (int i = 0; i < run.increments(); ++i) {
     run.apply_load(i);
     run.solve();
-    // THEORY §5: break the bonds over the criterion (and hold what they cut
-    // loose), re-equilibrate at fixed load, until no component changes the model.
+    // THEORY §5–§6: update the damage, break the bonds over the criterion (and
+    // hold what they cut loose), re-equilibrate at fixed load, until no
+    // component changes the model.
     while (run.evolve()) run.solve();
-    // THEORY §5, adaptive zone: α grows from the increment's failed bonds;
-    // the increment settles again on the grown model ([adaptivity] redo).
+    // THEORY §5–§6, adaptive zone: α grows from the increment's failed bonds
+    // and critical damage; the increment settles again on the grown model
+    // ([adaptivity] redo).
     while (run.adapt()) {
       run.solve();
       while (run.evolve()) run.solve();

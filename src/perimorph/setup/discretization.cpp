@@ -147,6 +147,12 @@ void place_alpha(Discretization& d, alpha::AlphaField alpha, const std::function
                                            ? assembly::CouplingRule::partition
                                            : assembly::CouplingRule::morphing,
                                        d.stiffness);
+  if (d.damage && !d.damage->laws.empty()) {
+    // THEORY §6: the morphing acts on the residual branch (1 − d_c) C₀ only;
+    // the damageable branch d_c C₀ (lowered by d during a run) is local everywhere.
+    const std::size_t law = 0;  // [nonlocal] has one material (nonlocal_material)
+    d.stiffness.add_to_all(d.damage->laws[law].d_c * d.damage->C0[law]);
+  }
   std::vector<dofs::Continuity> continuity;
   const auto dg = config.nonlocal.discretization;
   if (dg != casefile::Discretization::continuous) {
@@ -180,6 +186,14 @@ Discretization build_discretization(const casefile::CaseConfig& config, const Ph
   if (config.nonlocal.enabled) {
     nl.emplace();
     nl->material = nonlocal_material(config);
+    if (const auto& damage = nl->material.spec.damage; damage.enabled) {
+      // THEORY §6 (3.45): the micromodulus is calibrated to the residual branch (1 − d_c) C₀.
+      const double residual = 1.0 - damage.d_c;
+      nl->material.E *= residual;
+      nl->material.C0 *= residual;
+      nl->material.notes.push_back(fmt::format(
+          "calibrated to the residual branch (1 - d_c) C0 of the damage law, d_c = {:g}", damage.d_c));
+    }
     nl->kernel = make_kernel(config.nonlocal);
     nl->calibration = calibrate_kernel(nl->kernel, nl->material, dim, config.model.plane);
     const Eigen::MatrixXd& C0 = nl->material.C0;
@@ -214,8 +228,11 @@ Discretization build_discretization(const casefile::CaseConfig& config, const Ph
     phase("dof map");
   }
   dofs::DofMap dofmap(m, dim);  // CG; with [nonlocal], place_alpha sets the CG/DG flags
+  std::optional<DamageModel> damage;
+  if (config.has_damage())
+    damage = make_damage_model(config, m, rule, config.nonlocal.enabled ? config.nonlocal.quadrature : 0);
   Discretization d{config,           std::move(m), std::move(dofmap), std::move(rule),
-                   std::move(field), scale,        std::move(nl)};
+                   std::move(field), scale,        std::move(nl),     std::move(damage)};
   if (d.nonlocal) place_alpha(d, make_alpha_field(config), phase, true);
   return d;
 }

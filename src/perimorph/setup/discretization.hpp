@@ -10,6 +10,7 @@
 #include "perimorph/fem/constitutive_field.hpp"
 #include "perimorph/fem/material.hpp"
 #include "perimorph/mesh/mesh.hpp"
+#include "perimorph/setup/damage_model.hpp"
 #include "perimorph/setup/nonlocal_setup.hpp"
 
 #include <functional>
@@ -23,10 +24,15 @@ struct Discretization {
   mesh::Mesh mesh;
   dofs::DofMap dofmap;
   std::vector<fem::QuadraturePoint> rule;
+  /// The local stiffness C(x) at d = 0: with [material.damage], the residual
+  /// branch (morphed with α when [nonlocal]) plus d_c C₀ (THEORY §6); a run's
+  /// damage lowers it by d C₀ (damaged_stiffness).
   fem::ConstitutiveField stiffness;
   double scale = 1.0;  ///< thickness (2D) or cross-section (1D)
   /// The non-local part, when the case has a [nonlocal] section.
   std::optional<NonlocalModel> nonlocal;
+  /// The local damage, when a material has [material.damage].
+  std::optional<DamageModel> damage;
 
   int dim() const { return mesh.dim(); }
   assembly::LocalSpace local_space() const { return {mesh, dofmap, rule, scale}; }
@@ -36,9 +42,12 @@ struct Discretization {
     s.broken = failed;
     return s;
   }
-  /// True if cell c carries local stiffness (not purely non-local).
+  /// True if cell c carries local stiffness: not purely non-local, or
+  /// purely non-local with the damageable branch (d_c − d) C₀ of THEORY §6
+  /// (not on a DG degree 0 cell, whose one node has no strain).
   bool has_local_stiffness(Index c) const {
-    return !nonlocal || !nonlocal->morph.purely_nonlocal[static_cast<std::size_t>(c)];
+    if (!nonlocal || !nonlocal->morph.purely_nonlocal[static_cast<std::size_t>(c)]) return true;
+    return damage && damage->law_of(c) >= 0 && dofmap.cell_nodes(c).size() > 1;
   }
 };
 

@@ -78,6 +78,7 @@ const std::vector<Index>& ConstrainedSystem::finish_downdate() {
   rhs_add_.clear();
   last_downdated_.swap(touched_);
   touched_.clear();
+  ++downdates_;
   std::sort(last_downdated_.begin(), last_downdated_.end());
   last_downdated_.erase(std::unique(last_downdated_.begin(), last_downdated_.end()), last_downdated_.end());
   return last_downdated_;

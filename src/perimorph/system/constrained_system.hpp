@@ -51,6 +51,8 @@ class ConstrainedSystem {
   /// The free dofs touched by the downdates that the last finish_downdate
   /// closed (sorted, unique).
   const std::vector<Index>& last_downdated() const { return last_downdated_; }
+  /// How many finish_downdate calls there have been (a new last_downdated()).
+  std::size_t downdate_count() const { return downdates_; }
   /// Of `dofs`, those whose diagonal of A has fallen to round-off (1e-12) of
   /// its value before any downdate: dofs left with no stiffness.
   std::vector<Index> without_stiffness(std::span<const Index> dofs) const;
@@ -103,6 +105,7 @@ class ConstrainedSystem {
   // Collected by downdate, applied by finish_downdate.
   std::vector<Index> touched_, rhs_at_, free_dofs_;
   std::vector<Index> last_downdated_;
+  std::size_t downdates_ = 0;
   std::vector<double> rhs_add_, negative_;
 };
 

@@ -54,10 +54,13 @@ class SignedInserter final : public assembly::MatrixInserter {
 /// sign × the stiffness `disc` assembles for the flagged cells (their local
 /// blocks, the bonds of every cell pair with a flagged cell), `failed` left out.
 void add_cells(assembly::MatrixInserter& K, const setup::Discretization& disc, const std::vector<char>& in,
-               const bonds::BrokenBonds* failed, double sign) {
+               const bonds::BrokenBonds* failed, std::span<const double> damage, double sign) {
   SignedInserter inserter(K, sign);
   auto flagged = [&](Index c) { return in[static_cast<std::size_t>(c)] != 0; };
-  assembly::assemble_elasticity(disc.local_space(), disc.stiffness, inserter,
+  const bool damaged = disc.damage && !damage.empty();
+  const fem::ConstitutiveField C = damaged ? setup::damaged_stiffness(disc.stiffness, *disc.damage, damage)
+                                           : fem::ConstitutiveField(0, 0, 0);
+  assembly::assemble_elasticity(disc.local_space(), damaged ? C : disc.stiffness, inserter,
                                 [&](Index c) { return flagged(c) && disc.has_local_stiffness(c); });
   if (!disc.nonlocal) return;
   assembly::NonlocalOptions options;
@@ -137,7 +140,7 @@ std::vector<double> transfer_dof_vector(const setup::Discretization& before,
 
 Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& before,
                    const setup::Discretization& after, const bonds::BrokenBonds* failed,
-                   setup::DirichletData bc, std::span<const double> F) {
+                   setup::DirichletData bc, std::span<const double> F, std::span<const double> damage) {
   Remodelled out;
   const int dim = before.dim();
   out.cells = changed_cells(before, after);
@@ -149,7 +152,7 @@ Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& befor
   out.partial = assembled_pairs(before, in) + assembled_pairs(after, in) <= assembled_pairs(after, {});
   if (!out.partial) {
     auto t0 = clock::now();
-    la::Matrix K = system::assemble_stiffness(after, failed).K;
+    la::Matrix K = system::assemble_stiffness(after, failed, damage).K;
     out.times.add = since(t0);
     t0 = clock::now();
     std::vector<double> reference = transfer_dof_vector(before, after, system.reference_diagonal(), true);
@@ -163,7 +166,7 @@ Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& befor
   for (double d : system.reference_diagonal()) largest = std::max(largest, std::abs(d));
   auto t0 = clock::now();
   la::Matrix& K_old = system.K();
-  add_cells(K_old, before, in, failed, -1.0);
+  add_cells(K_old, before, in, failed, damage, -1.0);
   K_old.finalize();
   out.times.subtract = since(t0);
 
@@ -205,7 +208,7 @@ Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& befor
   out.times.copy = since(t0);
 
   t0 = clock::now();
-  add_cells(K_new, after, in, failed, 1.0);
+  add_cells(K_new, after, in, failed, damage, 1.0);
   K_new.finalize();
   out.times.add = since(t0);
 

@@ -66,9 +66,10 @@ struct Remodelled {
 /// costs about twice the assembly of the changed cells' bond pairs: when
 /// those (old and new) outnumber the new model's pairs, the new model is
 /// assembled instead (Remodelled::partial false), so the update never costs
-/// much more than an assembly.
+/// much more than an assembly. `damage` (d at every local quadrature point,
+/// THEORY §6; empty: none) lowers the local stiffness of both models alike.
 Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& before,
                    const setup::Discretization& after, const bonds::BrokenBonds* failed,
-                   setup::DirichletData bc, std::span<const double> F);
+                   setup::DirichletData bc, std::span<const double> F, std::span<const double> damage = {});
 
 }  // namespace perimorph::system

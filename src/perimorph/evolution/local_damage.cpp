@@ -1,0 +1,157 @@
+#include "perimorph/evolution/local_damage.hpp"
+
+#include "perimorph/assembly/inserter.hpp"
+#include "perimorph/assembly/local_assembly.hpp"
+#include "perimorph/core/error.hpp"
+#include "perimorph/fem/material.hpp"
+
+#include <algorithm>
+#include <array>
+
+namespace perimorph::evolution {
+
+namespace {
+
+/// Subtracts each (square, symmetric) block from the system: K −= block.
+class DowndateInserter final : public assembly::MatrixInserter {
+ public:
+  explicit DowndateInserter(system::ConstrainedSystem& system) : system_(system) {}
+  void add(std::span<const Index> rows, std::span<const Index> /*cols*/,
+           std::span<const double> values) override {
+    system_.downdate(rows, values);
+  }
+
+ private:
+  system::ConstrainedSystem& system_;  ///< non-owning
+};
+
+}  // namespace
+
+LocalDamage::LocalDamage(const setup::Discretization& disc)
+    : disc_(&disc), tolerance_(disc.config.damage.tolerance) {
+  PERIMORPH_ASSERT(disc.damage.has_value(), "LocalDamage needs a damage model");
+}
+
+Proposal LocalDamage::inspect(const RunState& state, const system::ConstrainedSystem& /*system*/) {
+  proposed_.clear();
+  largest_ = 0.0;
+  const setup::DamageModel& dm = *disc_->damage;
+  const Index ncells = disc_->mesh.num_cells();
+  const int npts = dm.points_per_cell;
+  const int nv = fem::voigt_size(disc_->dim());
+  const assembly::LocalSpace space = disc_->local_space();
+  // Each cell's points are independent: computed in parallel, gathered in
+  // cell order (the same proposal for any thread count).
+  std::vector<std::vector<Change>> per_cell(static_cast<std::size_t>(ncells));
+#pragma omp parallel
+  {
+    std::vector<double> strain(static_cast<std::size_t>(npts * nv)), volume(static_cast<std::size_t>(npts));
+#pragma omp for schedule(static)
+    for (Index c = 0; c < ncells; ++c) {
+      const int law = dm.law_of(c);
+      if (law < 0 || !disc_->has_local_stiffness(c)) continue;
+      const fem::DamageLaw& L = dm.laws[static_cast<std::size_t>(law)];
+      const double* C0 = dm.C0[static_cast<std::size_t>(law)].data();
+      assembly::strains_at_points(space, c, state.u, strain, volume);
+      for (int q = 0; q < npts; ++q) {
+        const std::size_t k =
+            static_cast<std::size_t>(c) * static_cast<std::size_t>(npts) + static_cast<std::size_t>(q);
+        const double Y = fem::damage_force(C0, strain.data() + q * nv, nv);
+        const double d = fem::updated_damage(L, Y, state.history[k]);
+        if (d > state.history[k])
+          per_cell[static_cast<std::size_t>(c)].push_back({k, d, Y, volume[static_cast<std::size_t>(q)]});
+      }
+    }
+  }
+  for (auto& changes : per_cell)
+    for (const Change& ch : changes) {
+      largest_ = std::max(largest_, ch.d - state.history[ch.point]);
+      proposed_.push_back(ch);
+    }
+  if (largest_ <= tolerance_) proposed_.clear();
+  return {proposed_.size()};
+}
+
+Effect LocalDamage::apply(RunState& state, system::ConstrainedSystem& system) {
+  const setup::DamageModel& dm = *disc_->damage;
+  const int npts = dm.points_per_cell;
+  const int dim = disc_->dim();
+  const int nv = fem::voigt_size(dim);
+  newly_critical_.clear();
+  // Δd C₀ at the changed points (0 elsewhere) of the changed cells.
+  fem::ConstitutiveField delta(dim, disc_->mesh.num_cells(), npts);
+  const int zero = delta.add_tensor(Eigen::MatrixXd::Zero(nv, nv));
+  for (Index c = 0; c < disc_->mesh.num_cells(); ++c) delta.set_cell(c, zero);
+  std::vector<char> changed(static_cast<std::size_t>(disc_->mesh.num_cells()), 0);
+  std::vector<Eigen::MatrixXd> C(static_cast<std::size_t>(npts));
+  EnergyLedger& ledger = state.energy;
+  for (std::size_t first = 0; first < proposed_.size();) {
+    const auto c = static_cast<Index>(proposed_[first].point / static_cast<std::size_t>(npts));
+    const int law = dm.law_of(c);
+    const fem::DamageLaw& L = dm.laws[static_cast<std::size_t>(law)];
+    const Eigen::MatrixXd& C0 = dm.C0[static_cast<std::size_t>(law)];
+    for (auto& m : C) m = Eigen::MatrixXd::Zero(nv, nv);
+    std::size_t last = first;
+    for (; last < proposed_.size() &&
+           proposed_[last].point / static_cast<std::size_t>(npts) == static_cast<std::size_t>(c);
+         ++last) {
+      const Change& ch = proposed_[last];
+      double& d = state.history[ch.point];
+      const double dd = ch.d - d;
+      const double dissipated =
+          (fem::damage_dissipation(L, ch.d) - fem::damage_dissipation(L, d)) * ch.volume;
+      // At fixed u, the stiffness drop releases Y Δd per volume; what the
+      // threshold does not dissipate is the overshoot of the finite step (≥ 0).
+      ledger.damage_dissipated += dissipated;
+      ledger.overshoot += ch.Y * dd * ch.volume - dissipated;
+      const int q = static_cast<int>(ch.point % static_cast<std::size_t>(npts));
+      C[static_cast<std::size_t>(q)] = dd * C0;
+      if (ch.d >= L.d_c) newly_critical_.emplace_back(c, q);
+      d = ch.d;
+    }
+    delta.set_cell_points(c, C);
+    changed[static_cast<std::size_t>(c)] = 1;
+    first = last;
+  }
+  DowndateInserter downdate(system);
+  assembly::assemble_elasticity(disc_->local_space(), delta, downdate,
+                                [&](Index c) { return changed[static_cast<std::size_t>(c)] != 0; });
+  system.finish_downdate();
+  return Effect::downdate;
+}
+
+DamageFields LocalDamage::fields(const RunState& state) const {
+  const setup::DamageModel& dm = *disc_->damage;
+  const Index ncells = disc_->mesh.num_cells();
+  const int npts = dm.points_per_cell;
+  const int nv = fem::voigt_size(disc_->dim());
+  DamageFields out;
+  out.history = state.history;
+  out.mean.assign(static_cast<std::size_t>(ncells), 0.0);
+  out.max.assign(static_cast<std::size_t>(ncells), 0.0);
+  out.dissipated.assign(static_cast<std::size_t>(ncells), 0.0);
+  const assembly::LocalSpace space = disc_->local_space();
+  std::vector<double> strain(static_cast<std::size_t>(npts * nv)), volume(static_cast<std::size_t>(npts));
+  for (Index c = 0; c < ncells; ++c) {
+    const int law = dm.law_of(c);
+    if (law < 0) continue;
+    const auto k = static_cast<std::size_t>(c);
+    bool any = false;
+    for (int q = 0; q < npts; ++q) any = any || setup::DamageModel::at(state.history, c, q, npts) > 0.0;
+    if (!any) continue;
+    assembly::strains_at_points(space, c, state.u, strain, volume);
+    double vol = 0.0;
+    for (int q = 0; q < npts; ++q) {
+      const double d = setup::DamageModel::at(state.history, c, q, npts);
+      const double w = volume[static_cast<std::size_t>(q)];
+      vol += w;
+      out.mean[k] += d * w;
+      out.max[k] = std::max(out.max[k], d);
+      out.dissipated[k] += fem::damage_dissipation(dm.laws[static_cast<std::size_t>(law)], d) * w;
+    }
+    out.mean[k] /= vol;
+  }
+  return out;
+}
+
+}  // namespace perimorph::evolution

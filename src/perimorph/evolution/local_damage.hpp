@@ -1,0 +1,64 @@
+#pragma once
+// Local damage (THEORY §6, thesis §3.4), an evolution component
+// (component.hpp): after a solve, the damage at every local quadrature point
+// of a damageable cell is updated from the strain (fem/damage_law.hpp), and
+// the stiffness follows: K −= ∫ Bᵀ (Δd C₀) B over the points whose d grew
+// (ConstrainedSystem::downdate), nothing reassembled. Solving again and
+// updating again is the fixed-point (secant) iteration of the increment; it
+// has converged when no point's d would change by more than the [damage]
+// tolerance. While the damage is still moving, bond failure waits (the run's
+// evolve: bonds, which fail irreversibly, are judged on a damage-converged
+// solution; fig. 3.22 alternates the two).
+
+#include "perimorph/evolution/component.hpp"
+#include "perimorph/setup/discretization.hpp"
+
+#include <vector>
+
+namespace perimorph::evolution {
+
+/// Per-cell damage fields for the VTU (empty for a run without damage).
+struct DamageFields {
+  std::vector<double> mean;        ///< d, mean over the cell's local quadrature points
+  std::vector<double> max;         ///< d, largest over them
+  std::vector<double> dissipated;  ///< energy the damage dissipated in the cell (k0 d + ½ k1 d² per volume)
+  std::span<const double> history;  ///< d at every local quadrature point (the stress is the damaged one)
+};
+
+class LocalDamage final : public Component {
+ public:
+  explicit LocalDamage(const setup::Discretization& disc);
+
+  std::string_view name() const override { return "local damage"; }
+  /// The points whose d grows at the state's displacement, proposed only when
+  /// the largest growth exceeds the [damage] tolerance (else quiet: converged).
+  Proposal inspect(const RunState& state, const system::ConstrainedSystem& system) override;
+  /// Raises d at the proposed points, downdates the system by Δd C₀ there,
+  /// books the dissipation and the overshoot in the ledger. Effect::downdate.
+  Effect apply(RunState& state, system::ConstrainedSystem& system) override;
+  void rebind(const setup::Discretization& disc, RunState& /*state*/,
+              system::ConstrainedSystem& /*system*/) override {
+    disc_ = &disc;
+  }
+
+  /// The largest growth of d the last inspect found (converged: ≤ tolerance).
+  double largest_change() const { return largest_; }
+  /// Local quadrature points whose d reached d_c in the last apply (cell, point).
+  const std::vector<std::pair<Index, int>>& newly_critical() const { return newly_critical_; }
+  DamageFields fields(const RunState& state) const;
+
+ private:
+  struct Change {
+    std::size_t point;  ///< index into RunState::history
+    double d;           ///< the new value
+    double Y;           ///< the damage force that drove it
+    double volume;      ///< w |J| scale of the point
+  };
+  const setup::Discretization* disc_;  ///< non-owning: the run's current discretization
+  double tolerance_ = 0.0;
+  double largest_ = 0.0;
+  std::vector<Change> proposed_;
+  std::vector<std::pair<Index, int>> newly_critical_;
+};
+
+}  // namespace perimorph::evolution
