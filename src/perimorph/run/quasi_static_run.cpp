@@ -94,6 +94,7 @@ void QuasiStaticRun::apply_load(int i) {
   state_.increment = i + 1;
   state_.load_factor = disc_->config.loading.factors[static_cast<std::size_t>(i)];
   rec_ = IncrementRecord{};
+  damage_updates_ = 0;
   failed_before_ = state_.failed.size();
   dissipated_before_ = state_.energy.dissipated;
 }
@@ -165,9 +166,14 @@ bool QuasiStaticRun::evolve() {
     }
     if (proposal.quiet()) continue;
     if (component.get() == damage_) {
-      if (rec_.damage_iterations == disc_->config.damage.max_iterations) stop_damage_unsettled();
+      // The fixed point restarts after every change of the model by bond
+      // failure or α: the cap is on consecutive damage updates.
+      if (damage_updates_ == disc_->config.damage.max_iterations) stop_damage_unsettled();
+      ++damage_updates_;
       ++rec_.damage_iterations;
       damage_changed = true;
+    } else if (component.get() != adaptivity_) {
+      damage_updates_ = 0;
     }
     if (!changed) {
       if (rec_.break_iterations == disc_->config.fracture.max_iterations) stop_unsettled(proposal.changes);
@@ -177,6 +183,7 @@ bool QuasiStaticRun::evolve() {
     const evolution::Effect effect = component->apply(state_, *system_);
     if (component.get() == fracture_) bonds_failed_in_pass_ = true;
     if (effect == evolution::Effect::rebuild) {
+      damage_updates_ = 0;
       // A new model: re-solve before any other component looks at the state.
       rebuild();
       return true;
@@ -315,7 +322,7 @@ void QuasiStaticRun::stop_damage_unsettled() {
   const int n = disc_->config.damage.max_iterations;
   throw Error(fmt::format(
       "increment {}/{} (load factor {}): the damage still changes by {:.3g} (tolerance {:g}) after {} "
-      "fixed-point iterations: the local damage does not settle at this load (a snap-back, or a "
+      "consecutive fixed-point iterations: the local damage does not settle at this load (a snap-back, or a "
       "load step too large for the secant iteration). Use smaller load increments, or raise [damage] "
       "max_iterations (now {}) or tolerance. The state after the last iteration is kept as increment "
       "{} ({}). {}",
@@ -344,6 +351,7 @@ void QuasiStaticRun::write_increment() {
 RunSummary QuasiStaticRun::finish() {
   progress_->finish();
   summary_.alpha = state_.alpha;
+  summary_.damage = state_.history;
   if (disc_->nonlocal) {
     const auto& pts = disc_->nonlocal->points;
     for (const auto& id : state_.failed_in_order)

@@ -46,8 +46,9 @@ class QuasiStaticRun {
   /// then the solver takes the changed operator. False when all were quiet.
   /// While the damage changes, bond failure waits for the next pass (bonds
   /// fail irreversibly: they are judged on a damage-converged solution).
-  /// With damage, an increment whose damage still moves after [damage]
-  /// max_iterations updates stops the run (Error) with its state written.
+  /// With damage, damage still moving after [damage] max_iterations
+  /// consecutive updates (no bond failure or growth of α in between) stops
+  /// the run (Error) with its state written.
   /// With [fracture], an increment still changing after max_iterations passes
   /// stops the run (Error) with its state written.
   bool evolve();
@@ -94,6 +95,7 @@ class QuasiStaticRun {
   evolution::BondFailure* fracture_ = nullptr;   ///< non-owning: the bond-failure component, if any
   evolution::Adaptivity* adaptivity_ = nullptr;  ///< non-owning: the adaptivity component, if any
   evolution::LocalDamage* damage_ = nullptr;     ///< non-owning: the damage component, if any
+  int damage_updates_ = 0;  ///< consecutive damage updates (no bond failed, α unchanged in between)
   bool bonds_failed_in_pass_ = false;  ///< the last evolve pass broke bonds (fracture_->proposed() is new)
   std::size_t balls_written_ = 0;      ///< adaptivity_->balls() already in the output
   double remodel_seconds_ = 0.0;       ///< spent in rebuild(), cumulative

@@ -57,6 +57,9 @@ struct RunSummary {
   std::vector<IncrementRecord> history;  ///< one record per completed increment (what the CSV holds)
   /// α of the model the run ended on (grown with [adaptivity]).
   alpha::AlphaField alpha = alpha::AlphaField::constant(0.0);
+  /// d at every local quadrature point at the end (RunState::history; empty
+  /// without [material.damage]).
+  std::vector<double> damage;
   /// The two ends of every failed bond, in the order they failed.
   std::vector<std::pair<Vec3, Vec3>> failed_bond_points;
   std::string output_directory, csv_path, pvd_path;

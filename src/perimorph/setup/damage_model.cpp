@@ -17,7 +17,8 @@ bool DamageModel::critical(std::span<const double> history, Index c, int p) cons
 }
 
 DamageModel make_damage_model(const casefile::CaseConfig& config, const mesh::Mesh& mesh,
-                              std::span<const fem::QuadraturePoint> rule, int nonlocal_points_per_direction) {
+                              std::span<const fem::QuadraturePoint> rule, int nonlocal_points_per_direction,
+                              const Eigen::MatrixXd* nonlocal_C0) {
   DamageModel out;
   const int dim = mesh.dim();
   out.points_per_cell = static_cast<int>(rule.size());
@@ -27,7 +28,9 @@ DamageModel make_damage_model(const casefile::CaseConfig& config, const mesh::Me
     if (mat.damage.enabled) {
       law = static_cast<int>(out.laws.size());
       out.laws.push_back({mat.damage.k0, mat.damage.k1, mat.damage.d_c});
-      out.C0.push_back(fem::reduce_stiffness(material_stiffness(mat), dim, config.model.plane));
+      out.C0.push_back(nonlocal_C0 ? *nonlocal_C0
+                                   : Eigen::MatrixXd(fem::reduce_stiffness(material_stiffness(mat), dim,
+                                                                           config.model.plane)));
     }
     // Later materials win, as for the stiffness (build_discretization).
     for (Index c : mesh.cell_sets.at(mat.region)) out.cell_law[static_cast<std::size_t>(c)] = law;

@@ -48,9 +48,11 @@ struct DamageModel {
 /// region, later materials winning as for the stiffness), with `rule` the
 /// local quadrature and `nonlocal_points_per_direction` the non-local rule
 /// (0: no non-local model). C0[k] is the material's full stiffness reduced to
-/// the model's dimension.
+/// the model's dimension; with [nonlocal], `nonlocal_C0` is the one material's
+/// as resolved for central forces (setup::NonlocalMaterial::C0, unscaled).
 DamageModel make_damage_model(const casefile::CaseConfig& config, const mesh::Mesh& mesh,
-                              std::span<const fem::QuadraturePoint> rule, int nonlocal_points_per_direction);
+                              std::span<const fem::QuadraturePoint> rule, int nonlocal_points_per_direction,
+                              const Eigen::MatrixXd* nonlocal_C0 = nullptr);
 
 /// `undamaged` lowered by d C₀ at every local point of every damageable cell
 /// with d > 0 (`history`: d per cell and local point); cells without damage

@@ -182,10 +182,12 @@ Discretization build_discretization(const casefile::CaseConfig& config, const Ph
   fem::ConstitutiveField field(dim, m.num_cells(), static_cast<int>(rule.size()));
 
   std::optional<NonlocalModel> nl;
+  Eigen::MatrixXd full_C0;  // [nonlocal]: the resolved material's C₀, before the residual scaling
   phase("material");
   if (config.nonlocal.enabled) {
     nl.emplace();
     nl->material = nonlocal_material(config);
+    full_C0 = nl->material.C0;
     if (const auto& damage = nl->material.spec.damage; damage.enabled) {
       // THEORY §6 (3.45): the micromodulus is calibrated to the residual branch (1 − d_c) C₀.
       const double residual = 1.0 - damage.d_c;
@@ -230,7 +232,8 @@ Discretization build_discretization(const casefile::CaseConfig& config, const Ph
   dofs::DofMap dofmap(m, dim);  // CG; with [nonlocal], place_alpha sets the CG/DG flags
   std::optional<DamageModel> damage;
   if (config.has_damage())
-    damage = make_damage_model(config, m, rule, config.nonlocal.enabled ? config.nonlocal.quadrature : 0);
+    damage = make_damage_model(config, m, rule, config.nonlocal.enabled ? config.nonlocal.quadrature : 0,
+                               nl ? &full_C0 : nullptr);
   Discretization d{config,           std::move(m), std::move(dofmap), std::move(rule),
                    std::move(field), scale,        std::move(nl),     std::move(damage)};
   if (d.nonlocal) place_alpha(d, make_alpha_field(config), phase, true);
