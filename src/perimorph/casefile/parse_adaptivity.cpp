@@ -33,11 +33,15 @@ void read_adaptivity(const Table& root, CaseConfig& c) {
   a.where = t->where();
   a.enabled = true;
   if (auto v = t->get("enabled")) a.enabled = v->boolean();
-  if (!c.nonlocal.enabled || !c.fracture.enabled)
+  bool hands_over = false;  // THEORY §6: α grows from the critical damage
+  for (const MaterialSpec& m : c.materials)
+    hands_over = hands_over || (m.damage.enabled && m.damage.d_c < 1.0);
+  if (!c.nonlocal.enabled || !(c.fracture.enabled || hands_over))
     t->fail(fmt::format(
         "an adaptive non-local zone needs [nonlocal] (the model α blends in) and [fracture] (the failed "
-        "bonds it follows); this case has {}",
-        !c.nonlocal.enabled ? "no [nonlocal]" : "no [fracture]"));
+        "bonds it follows) or a material whose damage hands over to it ([material.damage] with d_c < 1); "
+        "this case has {}",
+        !c.nonlocal.enabled ? "no [nonlocal]" : "neither"));
   if (c.alpha.regions.empty() && c.alpha.value > 0.0)
     t->fail(fmt::format(
         "α cannot grow from the constant [alpha] value = {} ({}): adaptivity adds balls of α = 1 to α ≡ 0 or "
@@ -53,7 +57,13 @@ void read_adaptivity(const Table& root, CaseConfig& c) {
   if (auto v = t->get("profile")) a.profile = choose(*v, profile_options(), "profile");
   if (auto v = t->get("update")) a.update = choose(*v, kUpdates, "update");
   if (auto v = t->get("redo")) a.redo = v->boolean();
-  if (auto v = t->get("predictor")) a.predictor = v->boolean();
+  if (auto v = t->get("predictor")) {
+    a.predictor = v->boolean();
+    if (a.predictor && !c.fracture.enabled)
+      v->fail(
+          "the predictor compares the strain with theta · s_crit: it needs [fracture]; add it, or remove "
+          "predictor");
+  }
   const auto theta = t->get("theta");
   if (theta) {
     if (!a.predictor)

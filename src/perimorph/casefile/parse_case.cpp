@@ -9,6 +9,7 @@
 #include "perimorph/casefile/choose_option.hpp"
 #include "perimorph/casefile/parse_adaptivity.hpp"
 #include "perimorph/casefile/parse_boundary.hpp"
+#include "perimorph/casefile/parse_damage.hpp"
 #include "perimorph/casefile/parse_fracture.hpp"
 #include "perimorph/casefile/parse_material.hpp"
 #include "perimorph/casefile/parse_nonlocal.hpp"
@@ -293,7 +294,7 @@ CaseConfig parse_case_string(std::string_view toml_text, const std::string& pret
   }
   const Table root(pretend_path, doc, "");
   root.check_keys({"case", "mesh", "region", "node_set", "model", "material", "dirichlet", "traction",
-                   "loading", "solver", "output", "nonlocal", "alpha", "fracture", "adaptivity"});
+                   "loading", "solver", "output", "nonlocal", "alpha", "fracture", "adaptivity", "damage"});
   CaseConfig c;
   c.path = pretend_path;
   read_case(root, c);
@@ -306,6 +307,7 @@ CaseConfig parse_case_string(std::string_view toml_text, const std::string& pret
   detail::read_nonlocal(root, c);
   detail::read_alpha(root, c);
   detail::read_fracture(root, c);
+  detail::read_damage(root, c);
   detail::read_adaptivity(root, c);
   detail::read_boundary(root, c);
   detail::read_loading(root, c);

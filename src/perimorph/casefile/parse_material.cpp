@@ -7,6 +7,7 @@
 // material is decided by the physics layer from the typed MaterialSpec.
 
 #include "perimorph/casefile/parse_material.hpp"
+#include "perimorph/casefile/parse_damage.hpp"
 
 #include "perimorph/casefile/parse_material_detail.hpp"
 #include "perimorph/casefile/suggest.hpp"
@@ -117,7 +118,7 @@ MaterialKind read_type(const Table& t) {
 }
 
 void check_material_keys(const Table& t, MaterialKind kind) {
-  std::vector<std::string> allowed{"name", "region", "type", "cauchy"};
+  std::vector<std::string> allowed{"name", "region", "type", "cauchy", "damage"};
   std::vector<std::pair<std::string, std::string>> hints;
   const std::string self = type_name(kind);
   for (MaterialKind other :
@@ -229,6 +230,7 @@ MaterialSpec read_material(const Table& t, const CaseConfig& c) {
   if (m.kind != MaterialKind::isotropic)
     if (auto v = t.get("rotation")) m.axes = read_rotation(*v, c.dim());
   read_cauchy(t, m, nonlocal);
+  read_material_damage(t, m);
   return m;
 }
 
