@@ -41,7 +41,7 @@ void read_adaptivity(const Table& root, CaseConfig& c) {
         "an adaptive non-local zone needs [nonlocal] (the model α blends in) and [fracture] (the failed "
         "bonds it follows) or a material whose damage hands over to it ([material.damage] with d_c < 1); "
         "this case has {}",
-        !c.nonlocal.enabled ? "no [nonlocal]" : "neither"));
+        !c.nonlocal.enabled ? "no [nonlocal]" : "no [fracture] and no such material"));
   if (c.alpha.regions.empty() && c.alpha.value > 0.0)
     t->fail(fmt::format(
         "α cannot grow from the constant [alpha] value = {} ({}): adaptivity adds balls of α = 1 to α ≡ 0 or "
