@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""perimorph's verification suite: runs BENCHMARKS.md's cases B1–B7 (all, or those named), full or reduced,
+"""perimorph's verification suite: runs BENCHMARKS.md's cases B1–B8 (all, or those named), full or reduced,
 and writes the summary table verification/README.md (full size) from every case's report.
 
     verification/run.py                      # every case, full size: verification/results/, README.md
@@ -32,7 +32,7 @@ def select(names):
     for n in names:
         hits = [c for c in CASES if c == n or c.split("_")[0] == n.lower()]
         if not hits:
-            raise SystemExit(f"error: no case {n!r}; the cases are {', '.join(CASES)} (or b1 ... b7)")
+            raise SystemExit(f"error: no case {n!r}; the cases are {', '.join(CASES)} (or b1 ... b8)")
         out += hits
     return out
 
@@ -56,7 +56,7 @@ def summary(results=RESULTS, path=os.path.join(HERE, "README.md")):
     for *_, s in rows:
         k = "PASS" if s == "PASS" else "info" if s == "info" else "FAIL" if s == "**FAIL**" else "fails: reason"
         counts[k] = counts.get(k, 0) + 1
-    L = ["# Verification: BENCHMARKS.md B1–B7", "",
+    L = ["# Verification: BENCHMARKS.md B1–B8", "",
          "Written by `verification/run.py` from the case reports in [results/](results/) on "
          f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}. Each report names the command, the program "
          "binary (md5 and the commit it was built from) and every run; each case script holds only its "

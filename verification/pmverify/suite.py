@@ -24,7 +24,7 @@ import time
 from .program import REPO, Program, RunSpec, parse_info
 
 CASES = ["b1_ghost_forces", "b2_plate_uniform", "b3_cracked_plate", "b4_cube_uniform", "b5_cracked_block",
-         "b6_fracture_convergence", "b7_adaptive_fracture"]
+         "b6_fracture_convergence", "b7_adaptive_fracture", "b8_damage_handover"]
 RESULTS = os.path.join(REPO, "verification", "results")
 
 
