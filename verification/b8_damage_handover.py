@@ -5,8 +5,9 @@ increment, and objectivity: the energy dissipated at failure on two meshes, agai
 
     verification/b8_damage_handover.py [--reduced] [--perimorph BIN]
 
-Full size: h = δ/3 and δ/4, N_i = 60, the hybrid (examples/b8_damage_handover_3d/case.toml) and the local damage
-model alone (local_alone.toml) on each mesh. Reduced size (CI): h = δ/2, N_i = 30, the two models on that mesh.
+Full size: h = δ/3 and δ/4, u_d to 3 mm in 120 increments (the stated step; the case says why the range is
+doubled), the hybrid (examples/b8_damage_handover_3d/case.toml) and the local damage model alone (local_alone.toml)
+on each mesh, the four runs two at a time. Reduced size (CI): h = δ/2, u_d to 1.5 mm in 30 increments.
 """
 
 import math
@@ -38,15 +39,26 @@ BAR_OBJECTIVITY = 0.10
 BAR_FAILURE = 0.01
 
 
+# Reduced size (CI): h = δ/2 and u_d to 1.5 mm (the range BENCHMARKS.md states) in 30 increments: phases a and b
+# and the energy balance; fracture and failure (beyond u_d = 1.5 mm with these material values, see the case) are
+# left to the full size, whose secant damage iterations cost too much for CI.
+REDUCED_U_D = 1.5
+
+
 def meshes(reduced):
     """[(label, h/δ, cells)], increments"""
     if reduced:
-        return [("δ/2", 1 / 2, [60, 10, 4])], 60
+        return [("δ/2", 1 / 2, [60, 10, 4])], 30
     return [("δ/3", 1 / 3, [90, 15, 6]), ("δ/4", 1 / 4, [120, 20, 8])], 120
 
 
-def case_text(template, cells, n):
-    return template.set({"mesh.cells": cells, "loading.increments": n, "output.every": 1}, None)
+def end_displacement(reduced):
+    return REDUCED_U_D if reduced else T.get("dirichlet[1].ux") - T.get("dirichlet[0].ux")
+
+
+def case_text(template, cells, n, u_d):
+    return template.set({"mesh.cells": cells, "loading.increments": n, "output.every": 1,
+                         "dirichlet[0].ux": -u_d / 2, "dirichlet[1].ux": u_d / 2}, None)
 
 
 def phases(A):
@@ -116,10 +128,10 @@ def maps_figure(rep, plt, run, ph, h, label):
 def run(ctx):
     rep = Report(ctx, CASE_ID, NAME, TITLE)
     mesh_list, n_inc = meshes(ctx.reduced)
-    u_d = T.get("dirichlet[1].ux") - T.get("dirichlet[0].ux")
+    u_d = end_displacement(ctx.reduced)
     u = u_d * np.arange(1, n_inc + 1) / n_inc
     strain = u / LENGTH
-    specs = [RunSpec(f"{model}_h{label[-1]}", case_text(tmpl, cells, n_inc))
+    specs = [RunSpec(f"{model}_h{label[-1]}", case_text(tmpl, cells, n_inc, u_d))
              for label, h, cells in mesh_list for model, tmpl in (("hybrid", T), ("local", L))]
     done = dict(zip([s.name for s in specs], ctx.run_all(specs)))
     res = {}
@@ -141,7 +153,8 @@ def run(ctx):
         f"Ends pulled apart: u_x = ±u_d/2, u_d from 0 to {u_d:g} mm in {n_inc} increments. α ≡ 0 at the start; "
         "[adaptivity]: a ball (α = 1 to h_e + δ, 0 at h_e + 2δ) around every cell with a point at d = d_c or a "
         "failed bond, the increment redone on the grown model (fig. 3.22).",
-        *(["Reduced size (CI): h = δ/2 only; the criteria that need two meshes are reported, not judged."]
+        *([f"Reduced size (CI): h = δ/2 only, u_d to {REDUCED_U_D:g} mm in {n_inc} increments; the criteria are "
+            "reported, not judged, except the energy balance (B8.5)."]
           if ctx.reduced else []))
 
     first = mesh_list[0][0]

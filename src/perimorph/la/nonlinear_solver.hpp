@@ -1,0 +1,64 @@
+#pragma once
+// PETSc SNES wrapper: Newton's method with a line search on F(u) = 0, the
+// residual and the Jacobian given as callbacks on plain arrays (so that the
+// assembly that fills them needs no PETSc). Defaults: newtonls with the
+// backtracking line search, a direct LU solve of each Newton step; every
+// PETSc option under the prefix overrides them (-<prefix>snes_type,
+// -<prefix>ksp_type, -<prefix>pc_type, -<prefix>snes_linesearch_type, ...).
+
+#include "perimorph/core/types.hpp"
+#include "perimorph/la/matrix.hpp"
+#include "perimorph/la/petsc_fwd.hpp"
+#include "perimorph/la/vector.hpp"
+
+#include <functional>
+#include <span>
+#include <string>
+
+namespace perimorph::la {
+
+struct NonlinearReport {
+  int iterations = 0;     ///< Newton steps
+  int linear_solves = 0;  ///< linear solves (one per step for a direct solve)
+  int residual_evaluations = 0;
+  bool converged = false;
+  std::string reason;  ///< PETSc's converged/diverged reason
+  double residual_norm = 0.0;
+};
+
+class NonlinearSolver {
+ public:
+  /// r = F(u) (both of the matrix's size).
+  using Residual = std::function<void(std::span<const double> u, std::span<double> r)>;
+  /// J = ∂F/∂u at u: J is zeroed before the call; add into it (Matrix::add),
+  /// the solver finalizes it after.
+  using Jacobian = std::function<void(std::span<const double> u, Matrix& J)>;
+
+  /// `J` (its pattern holds every entry the Jacobian adds) is owned by the
+  /// caller and outlives the solver. Convergence: ||F|| ≤ max(atol, rtol ||F(u₀)||)
+  /// within max_iterations steps.
+  NonlinearSolver(Matrix& J, Residual residual, Jacobian jacobian, double rtol, double atol,
+                  int max_iterations, const std::string& options_prefix);
+  ~NonlinearSolver();
+  NonlinearSolver(const NonlinearSolver&) = delete;
+  NonlinearSolver& operator=(const NonlinearSolver&) = delete;
+
+  /// Solves F(u) = 0 from u (the initial guess in, the last iterate out).
+  /// Never throws for non-convergence: the report says how it ended.
+  NonlinearReport solve(Vector& u);
+
+  // For the PETSc callbacks (la/nonlinear_solver.cpp).
+  const Residual& residual() const { return residual_; }
+  const Jacobian& jacobian() const { return jacobian_; }
+  Matrix& jacobian_matrix() { return J_; }
+  int residual_evaluations = 0;
+
+ private:
+  PetscSnesHandle snes_ = nullptr;
+  Matrix& J_;
+  Residual residual_;
+  Jacobian jacobian_;
+  Vector r_;
+};
+
+}  // namespace perimorph::la
