@@ -462,7 +462,8 @@ TEST(CaseFileNonlocal, EveryKernel) {
   const std::pair<const char*, KernelKind> kernels[] = {{"constant", KernelKind::constant},
                                                         {"conical", KernelKind::conical},
                                                         {"exponential", KernelKind::exponential},
-                                                        {"gaussian", KernelKind::gaussian}};
+                                                        {"gaussian", KernelKind::gaussian},
+                                                        {"pmb", KernelKind::pmb}};
   for (const auto& [name, kind] : kernels) {
     SCOPED_TRACE(name);
     const bool scaled = kind == KernelKind::exponential || kind == KernelKind::gaussian;

@@ -43,6 +43,8 @@ double phi(KernelShape s, double r, double delta, double l) {
       return r * r * std::exp(-r / l);
     case KernelShape::gaussian:
       return r * r * std::exp(-r * r / (l * l));
+    case KernelShape::pmb:
+      return r > 0.0 ? 1.0 / r : 0.0;  // only ever multiplied by r^k, k ≥ 2: the limit at 0 is 0
   }
   return 0.0;
 }
@@ -80,6 +82,10 @@ Micromodulus kernel(KernelShape s, double delta, double l) {
 
 const std::array<KernelShape, 4> all_shapes{KernelShape::constant, KernelShape::conical,
                                             KernelShape::exponential, KernelShape::gaussian};
+/// Every kernel the calibration tests cover (pmb is singular at r = 0, where no bond is).
+const std::array<KernelShape, 5> calibrated_shapes{KernelShape::constant, KernelShape::conical,
+                                                   KernelShape::exponential, KernelShape::gaussian,
+                                                   KernelShape::pmb};
 
 TEST(PeridynamicsKernel, ShapeValuesAndCutOff) {
   const double delta = 1.7, l = 0.4;
@@ -137,6 +143,33 @@ TEST(PeridynamicsKernel, OneDimensionalConstantKernelIs3EOverDeltaCubed) {
   }
 }
 
+TEST(PeridynamicsKernel, PmbIsThePrototypeMicroElasticBrittleModel) {
+  // Silling & Askari (2005), Ha & Bobaru (2010): a force per unit stretch c_pmb (c_pmb / r per
+  // elongation); 3D c = 18K/(πδ⁴), G_0 = (9/5) K δ s₀²; 2D plane stress c = 9E/(πδ³),
+  // G_0 = 9Eδ s₀²/(4π); plane strain c = 48E/(5πδ³); 1D c = 2E/δ², G_0 = Eδ s₀²/3.
+  const double E = 300.0;
+  for (double delta : {0.3, 1.0, 3.015}) {
+    const auto k = kernel(KernelShape::pmb, delta, 1.0);
+    EXPECT_DOUBLE_EQ(k.shape_value(0.5 * delta), 2.0 / delta);
+    EXPECT_EQ(k.shape_value(delta), 0.0);
+    for (int m = 2; m <= 6; ++m)
+      EXPECT_NEAR(k.shape_moment(m), std::pow(delta, m) / m, 1e-13 * std::pow(delta, m)) << m;
+    const double K = E / (3.0 * (1.0 - 2.0 * 0.25));
+    const auto c3 = peridynamics::calibrate_isotropic(k, 3, PlaneMode::strain, E);
+    EXPECT_NEAR(c3.scale, 18.0 * K / (pi * std::pow(delta, 4)), 1e-12 * c3.scale);
+    EXPECT_NEAR(c3.gc_factor, 9.0 / 5.0 * K * delta, 1e-12 * c3.gc_factor);
+    const auto ps = peridynamics::calibrate_isotropic(k, 2, PlaneMode::stress, E);
+    EXPECT_NEAR(ps.scale, 9.0 * E / (pi * std::pow(delta, 3)), 1e-12 * ps.scale);
+    EXPECT_NEAR(ps.gc_factor, 9.0 * E * delta / (4.0 * pi), 1e-12 * ps.gc_factor);
+    const auto pe = peridynamics::calibrate_isotropic(k, 2, PlaneMode::strain, E);
+    EXPECT_NEAR(pe.scale, 48.0 * E / (5.0 * pi * std::pow(delta, 3)), 1e-12 * pe.scale);
+    const auto c1 = peridynamics::calibrate_isotropic(k, 1, PlaneMode::strain, E);
+    EXPECT_NEAR(c1.scale, 2.0 * E / (delta * delta), 1e-12 * c1.scale);
+    EXPECT_NEAR(c1.gc_factor, E * delta / 3.0, 1e-12 * c1.gc_factor);
+  }
+  EXPECT_STREQ(peridynamics::to_string(KernelShape::pmb), "pmb");
+}
+
 /// Independent reference moments: closed form for constant and conical, Simpson otherwise.
 double reference_moment(KernelShape s, double delta, double l, int k) {
   if (s == KernelShape::constant) return std::pow(delta, k + 1) / (k + 1);
@@ -146,7 +179,7 @@ double reference_moment(KernelShape s, double delta, double l, int k) {
 
 TEST(PeridynamicsKernel, CalibrationTable) {
   const double E = 90.0, delta = 0.75, l = delta / 5.0;
-  for (KernelShape s : all_shapes) {
+  for (KernelShape s : calibrated_shapes) {
     const auto k = kernel(s, delta, l);
     SCOPED_TRACE(to_string(s));
     // 1D: E = ∫ c r² dr, G_c factor ½ ∫ c r³.
@@ -271,9 +304,11 @@ std::array<double, 81> bond_tensor(KernelShape s, double delta, double l, double
 
 TEST(PeridynamicsKernel, CalibratedScaleReproducesIsotropicStiffness) {
   const double E = 70.0, delta = 1.3;
-  for (KernelShape s : all_shapes)
+  for (KernelShape s : calibrated_shapes)
     for (double l : {delta / 5.0, delta / 3.0}) {
-      if ((s == KernelShape::constant || s == KernelShape::conical) && l != delta / 5.0) continue;
+      if ((s == KernelShape::constant || s == KernelShape::conical || s == KernelShape::pmb) &&
+          l != delta / 5.0)
+        continue;
       for (int dim : {2, 3})
         for (PlaneMode mode : {PlaneMode::strain, PlaneMode::stress}) {
           if (dim == 3 && mode == PlaneMode::stress) continue;

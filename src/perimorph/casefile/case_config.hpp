@@ -209,7 +209,7 @@ struct OutputSpec {
   bool failed_bonds = false;  ///< fracture runs: BASENAME_failed_bonds.csv, one row per failed bond
 };
 
-enum class KernelKind { constant, conical, exponential, gaussian };
+enum class KernelKind { constant, conical, exponential, gaussian, pmb };
 enum class Discretization { continuous, discontinuous, discontinuous_constant };
 enum class Coupling { morphing, partition };
 enum class CalibrationRule { continuum, discrete };
@@ -335,9 +335,10 @@ struct AdaptivitySpec {
 /// changes by more than `tolerance` (absolute). Needs a material with
 /// [material.damage]; optional (defaults below) when one has it.
 struct DamageSolverSpec {
-  double tolerance = 1e-6;   ///< > 0 (d is dimensionless, 0 … d_c)
-  int max_iterations = 500;  ///< ≥ 1 damage updates per increment; more stops the run, keeping what was computed
-  SourceLocation where;      ///< the [damage] header (empty when absent)
+  double tolerance = 1e-6;  ///< > 0 (d is dimensionless, 0 … d_c)
+  int max_iterations =
+      500;  ///< ≥ 1 damage updates per increment; more stops the run, keeping what was computed
+  SourceLocation where;  ///< the [damage] header (empty when absent)
 };
 
 struct CaseConfig {

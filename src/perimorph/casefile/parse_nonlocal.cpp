@@ -25,7 +25,8 @@ namespace {
 const Options<KernelKind> kKernels{{"constant", KernelKind::constant},
                                    {"conical", KernelKind::conical},
                                    {"exponential", KernelKind::exponential},
-                                   {"gaussian", KernelKind::gaussian}};
+                                   {"gaussian", KernelKind::gaussian},
+                                   {"pmb", KernelKind::pmb}};
 const Options<Discretization> kDiscretizations{
     {"continuous", Discretization::continuous},
     {"discontinuous", Discretization::discontinuous},
@@ -228,7 +229,8 @@ void read_nonlocal(const Table& root, CaseConfig& c) {
   n.enabled = true;
   n.where = t->where();
   const Value kernel = t->require(
-      "kernel", "the micromodulus kernel: \"constant\", \"conical\", \"exponential\" or \"gaussian\"");
+      "kernel",
+      "the micromodulus kernel: \"constant\", \"conical\", \"exponential\", \"gaussian\" or \"pmb\"");
   n.kernel = choose(kernel, kKernels, "kernel");
   n.horizon =
       positive(t->require("horizon", "the horizon δ > 0, the reach of the non-local bonds"), "the horizon δ");

@@ -21,6 +21,8 @@ const char* to_string(KernelShape s) {
       return "exponential";
     case KernelShape::gaussian:
       return "gaussian";
+    case KernelShape::pmb:
+      return "pmb";
   }
   return "?";
 }
@@ -36,13 +38,16 @@ double Micromodulus::shape_value(double r) const {
       return r * r * std::exp(-r / length);
     case KernelShape::gaussian:
       return r * r * std::exp(-r * r / (length * length));
+    case KernelShape::pmb:
+      return 1.0 / r;  // bonds join distinct points: r > 0
   }
   return 0.0;
 }
 
 double Micromodulus::shape_moment(int k) const {
   // Composite Gauss–Legendre, 32 panels of 20 points: the integrands are
-  // smooth on [0, δ], so this is exact to round-off.
+  // smooth on [0, δ] (for pmb, r^(k−1) with k ≥ 2), so this is exact to
+  // round-off.
   static const auto rule = fem::gauss_legendre_1d(20);
   constexpr int panels = 32;
   const double h = horizon / panels;

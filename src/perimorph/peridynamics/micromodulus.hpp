@@ -10,12 +10,17 @@
 
 namespace perimorph::peridynamics {
 
-enum class KernelShape { constant, conical, exponential, gaussian };
+enum class KernelShape { constant, conical, exponential, gaussian, pmb };
 
 const char* to_string(KernelShape s);
 
 /// c(r) = scale · φ(r) for r < δ, 0 otherwise, with φ = 1, 1 − r/δ,
-/// r² exp(−r/l), r² exp(−r²/l²) for constant, conical, exponential, gaussian;
+/// r² exp(−r/l), r² exp(−r²/l²), 1/r for constant, conical, exponential,
+/// gaussian, pmb. c is the force per unit *elongation* of a bond (the thesis'
+/// convention, THEORY §1.1). `pmb` is the prototype micro-elastic brittle
+/// model (Silling & Askari 2005; Peridigm's "Elastic", LAMMPS' peri/pmb): a
+/// constant force per unit *stretch* c_pmb, i.e. c_pmb / r per elongation, so
+/// its scale is their c_pmb (3D: 18K/(πδ⁴)).
 /// a bond ξ acts with c(|ξ|) · Y(ξ/|ξ|), Y the angular part (THEORY §2.1;
 /// Y ≡ 1 for an isotropic kernel).
 struct Micromodulus {

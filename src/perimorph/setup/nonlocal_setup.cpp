@@ -111,6 +111,9 @@ peridynamics::Micromodulus make_kernel(const casefile::NonlocalSpec& spec) {
     case casefile::KernelKind::gaussian:
       k.shape = peridynamics::KernelShape::gaussian;
       break;
+    case casefile::KernelKind::pmb:
+      k.shape = peridynamics::KernelShape::pmb;
+      break;
   }
   k.horizon = spec.horizon;
   k.length = spec.length > 0 ? spec.length : spec.horizon;
