@@ -62,6 +62,12 @@ TEST(CaseFileDamage, ReadsTheLawAndTheDefaults) {
       case_with("k0 = 1\nk1 = 1\n", "[damage]\ntolerance = 1e-4\nmax_iterations = 50\n"), "f.toml");
   EXPECT_EQ(s.damage.tolerance, 1e-4);
   EXPECT_EQ(s.damage.max_iterations, 50);
+  EXPECT_EQ(s.damage.solver, DamageSolver::secant) << "the thesis' fixed point by default";
+  EXPECT_EQ(parse_case_string(case_with("k0 = 1\nk1 = 1\n", "[damage]\nsolver = \"newton\"\n"), "f.toml")
+                .damage.solver,
+            DamageSolver::newton);
+  expect_error(case_with("k0 = 1\nk1 = 1\n", "[damage]\nsolver = \"newtn\"\n"),
+               {"solver", "newtn", "newton"});
 }
 
 TEST(CaseFileDamage, MissingAndImpossibleValuesNameTheKey) {

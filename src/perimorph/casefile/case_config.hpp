@@ -333,8 +333,14 @@ struct AdaptivitySpec {
 /// §6): fixed-point (secant) iterations {solve with the stiffness of the
 /// current d; update d from the solution} until no quadrature point's d
 /// changes by more than `tolerance` (absolute). Needs a material with
-/// [material.damage]; optional (defaults below) when one has it.
+/// [material.damage]; optional (defaults below) when one has it. With
+/// solver = newton, each update is preceded by a Newton solve (consistent
+/// tangent, PETSc SNES, options prefix -damage_) for the d that the
+/// current increment converges to, so the fixed point starts there.
+enum class DamageSolver { secant, newton };
+
 struct DamageSolverSpec {
+  DamageSolver solver = DamageSolver::secant;
   double tolerance = 1e-6;  ///< > 0 (d is dimensionless, 0 … d_c)
   int max_iterations =
       500;  ///< ≥ 1 damage updates per increment; more stops the run, keeping what was computed

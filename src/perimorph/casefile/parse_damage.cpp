@@ -3,6 +3,8 @@
 
 #include "perimorph/casefile/parse_damage.hpp"
 
+#include "perimorph/casefile/choose_option.hpp"
+
 #include <fmt/format.h>
 
 namespace perimorph::casefile::detail {
@@ -48,7 +50,7 @@ void read_damage(const Table& root, CaseConfig& c) {
            "remove [nonlocal] for the local damage model alone");
   const auto t = root.table("damage");
   if (!t) return;
-  t->check_keys({"tolerance", "max_iterations"});
+  t->check_keys({"solver", "tolerance", "max_iterations"});
   c.damage.where = t->where();
   if (!c.has_damage())
     t->fail(
@@ -63,6 +65,9 @@ void read_damage(const Table& root, CaseConfig& c) {
           c.damage.tolerance));
   }
   if (auto v = t->get("max_iterations")) c.damage.max_iterations = v->integer(1, 1000000);
+  static const Options<DamageSolver> solvers{{"secant", DamageSolver::secant},
+                                             {"newton", DamageSolver::newton}};
+  if (auto v = t->get("solver")) c.damage.solver = choose(*v, solvers, "solver");
 }
 
 }  // namespace perimorph::casefile::detail

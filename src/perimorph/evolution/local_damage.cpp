@@ -3,6 +3,7 @@
 #include "perimorph/assembly/inserter.hpp"
 #include "perimorph/assembly/local_assembly.hpp"
 #include "perimorph/core/error.hpp"
+#include "perimorph/evolution/damage_newton.hpp"
 #include "perimorph/fem/material.hpp"
 
 #include <algorithm>
@@ -27,8 +28,33 @@ class DowndateInserter final : public assembly::MatrixInserter {
 
 }  // namespace
 
+namespace {
+
+/// ½ uᵀ K u − λ Fᵀ u (K the system's unconstrained stiffness, F the applied force at load factor 1).
+double potential(const system::ConstrainedSystem& system, std::span<const double> u, double lambda) {
+  const auto n = static_cast<Index>(u.size());
+  la::Vector x(n, 1), Kx(n, 1);
+  x.assign(u);
+  system.K().mult(x, Kx);
+  const auto k = Kx.to_std();
+  const auto& F = system.applied_force();
+  double e = 0.0;
+  for (std::size_t i = 0; i < u.size(); ++i) e += 0.5 * u[i] * k[i] - lambda * F[i] * u[i];
+  return e;
+}
+
+}  // namespace
+
+void LocalDamage::ledger_move(RunState& state, const system::ConstrainedSystem& system,
+                              std::span<const double> u_newton) {
+  state.energy.overshoot -=
+      potential(system, u_newton, state.load_factor) - potential(system, state.u, state.load_factor);
+}
+
 LocalDamage::LocalDamage(const setup::Discretization& disc)
-    : disc_(&disc), tolerance_(disc.config.damage.tolerance) {
+    : disc_(&disc),
+      tolerance_(disc.config.damage.tolerance),
+      newton_(disc.config.damage.solver == casefile::DamageSolver::newton) {
   PERIMORPH_ASSERT(disc.damage.has_value(), "LocalDamage needs a damage model");
 }
 
@@ -73,6 +99,23 @@ Proposal LocalDamage::inspect(const RunState& state, const system::ConstrainedSy
 }
 
 Effect LocalDamage::apply(RunState& state, system::ConstrainedSystem& system) {
+  if (newton_) {
+    std::vector<double> u = state.u;
+    const DamageNewtonReport rep = solve_damage_newton(*disc_, system, state.history, state.load_factor, u);
+    newton_steps_ += rep.steps;
+    if (rep.converged) {
+      // Newton moved u at the old stiffness without the load moving: the
+      // stored energy changed by ½(u_Nᵀ K u_N − u₀ᵀ K u₀) less the work of the
+      // applied forces. The update below books what the stiffness drop
+      // releases at u_N; what the move stored is taken from it, so that the
+      // ledger stays W = U + D + D_d + overshoot + released.
+      ledger_move(state, system, u);
+      state.u = std::move(u);
+      inspect(state, system);  // the update goes to Newton's d
+    } else {
+      ++newton_failures_;
+    }
+  }
   const setup::DamageModel& dm = *disc_->damage;
   const int npts = dm.points_per_cell;
   const int dim = disc_->dim();

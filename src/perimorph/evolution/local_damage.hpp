@@ -35,12 +35,19 @@ class LocalDamage final : public Component {
   Proposal inspect(const RunState& state, const system::ConstrainedSystem& system) override;
   /// Raises d at the proposed points, downdates the system by Δd C₀ there,
   /// books the dissipation and the overshoot in the ledger. Effect::downdate.
+  /// With [damage] solver = "newton", first moves the state's u to the
+  /// solution of the increment's damage problem (evolution/damage_newton.hpp)
+  /// and proposes again there; if Newton does not converge, the secant
+  /// update goes on from the last solve (newton_failures counts it).
   Effect apply(RunState& state, system::ConstrainedSystem& system) override;
   void rebind(const setup::Discretization& disc, RunState& /*state*/,
               system::ConstrainedSystem& /*system*/) override {
     disc_ = &disc;
   }
 
+  /// Newton steps taken and Newton solves that did not converge, over the run.
+  int newton_steps() const { return newton_steps_; }
+  int newton_failures() const { return newton_failures_; }
   /// The largest growth of d the last inspect found (converged: ≤ tolerance).
   double largest_change() const { return largest_; }
   /// Local quadrature points whose d reached d_c in the last apply (cell, point).
@@ -54,8 +61,12 @@ class LocalDamage final : public Component {
     double Y;           ///< the damage force that drove it
     double volume;      ///< w |J| scale of the point
   };
+  static void ledger_move(RunState& state, const system::ConstrainedSystem& system,
+                          std::span<const double> u_newton);
   const setup::Discretization* disc_;  ///< non-owning: the run's current discretization
   double tolerance_ = 0.0;
+  bool newton_ = false;
+  int newton_steps_ = 0, newton_failures_ = 0;
   double largest_ = 0.0;
   std::vector<Change> proposed_;
   std::vector<std::pair<Index, int>> newly_critical_;
