@@ -99,7 +99,7 @@ Proposal LocalDamage::inspect(const RunState& state, const system::ConstrainedSy
 }
 
 Effect LocalDamage::apply(RunState& state, system::ConstrainedSystem& system) {
-  if (newton_) {
+  if (newton_ && state.increment != newton_failed_in_) {
     std::vector<double> u = state.u;
     const DamageNewtonReport rep = solve_damage_newton(*disc_, system, state.history, state.load_factor, u);
     newton_steps_ += rep.steps;
@@ -114,6 +114,7 @@ Effect LocalDamage::apply(RunState& state, system::ConstrainedSystem& system) {
       inspect(state, system);  // the update goes to Newton's d
     } else {
       ++newton_failures_;
+      newton_failed_in_ = state.increment;  // the fixed point finishes this increment
     }
   }
   const setup::DamageModel& dm = *disc_->damage;

@@ -37,8 +37,10 @@ class LocalDamage final : public Component {
   /// books the dissipation and the overshoot in the ledger. Effect::downdate.
   /// With [damage] solver = "newton", first moves the state's u to the
   /// solution of the increment's damage problem (evolution/damage_newton.hpp)
-  /// and proposes again there; if Newton does not converge, the secant
-  /// update goes on from the last solve (newton_failures counts it).
+  /// and proposes again there; if Newton does not converge (12 steps, or
+  /// the line search stalls at a kink of d(u) such as the cap at d_c), the
+  /// secant update goes on from the last solve, for the rest of that
+  /// increment (newton_failures counts it).
   Effect apply(RunState& state, system::ConstrainedSystem& system) override;
   void rebind(const setup::Discretization& disc, RunState& /*state*/,
               system::ConstrainedSystem& /*system*/) override {
@@ -67,6 +69,7 @@ class LocalDamage final : public Component {
   double tolerance_ = 0.0;
   bool newton_ = false;
   int newton_steps_ = 0, newton_failures_ = 0;
+  int newton_failed_in_ = -1;  ///< the increment where Newton last failed: not tried again there
   double largest_ = 0.0;
   std::vector<Change> proposed_;
   std::vector<std::pair<Index, int>> newly_critical_;

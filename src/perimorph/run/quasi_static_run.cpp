@@ -145,7 +145,12 @@ void QuasiStaticRun::warn_unused_options() {
   // The solver has read its options (the preconditioner's at its first set-up).
   if (options_checked_) return;
   options_checked_ = true;
-  if (const auto unused = la::unused_options(); !unused.empty())
+  auto unused = la::unused_options();
+  // The damage's Newton solver (-damage_ options) reads its options at its
+  // first solve, which may come later.
+  if (disc_->config.damage.solver == casefile::DamageSolver::newton)
+    std::erase_if(unused, [](const std::string& o) { return o.starts_with("-damage_"); });
+  if (!unused.empty())
     progress_->message(
         fmt::format("warning: PETSc did not use the option(s) {}: misspelt, or meant for a solver or "
                     "preconditioner not in use (the case's [solver] petsc_options and the command line; "
