@@ -89,6 +89,7 @@ DamageNewtonReport solve_damage_newton(const setup::Discretization& disc,
   la::Matrix J = system.A().duplicate();
   la::Vector uv(n, 1), Au(n, 1), fcorr(n, 1);
   std::vector<char> cells;
+  const std::vector<double> b = system.rhs_unit().to_std();  // fixed during the solve
   auto residual = [&](std::span<const double> x, std::span<double> r) {
     uv.assign(x);
     system.A().mult(uv, Au);
@@ -98,7 +99,7 @@ DamageNewtonReport solve_damage_newton(const setup::Discretization& disc,
                                   [&](Index c) { return cells[static_cast<std::size_t>(c)] != 0; });
     local.finalize();
     local.mult(uv, fcorr);
-    const auto a = Au.to_std(), f = fcorr.to_std(), b = system.rhs_unit().to_std();
+    const auto a = Au.to_std(), f = fcorr.to_std();
     for (Index i = 0; i < n; ++i) {
       const auto k = static_cast<std::size_t>(i);
       r[k] = a[k] - lambda * b[k] - (system.prescribed(i) ? 0.0 : f[k]);
