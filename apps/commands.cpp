@@ -128,6 +128,9 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
                path, summary.increments_done, model.dofmap.num_dofs(), summary.last_solve.ksp_type,
                summary.last_solve.pc_type, summary.last_solve.iterations,
                summary.last_solve.relative_residual);
+    if (summary.preconditioner_rebuilds > 0)
+      fmt::print("{} solves diverged with the reused preconditioner and converged with it rebuilt\n",
+                 summary.preconditioner_rebuilds);
     fmt::print("strain energy {:.6e}, external work {:.6e}\n", summary.strain_energy, summary.external_work);
     for (std::size_t k = 0; k < summary.reactions.size(); ++k)
       fmt::print("reaction on '{}': ({:.6e}, {:.6e}, {:.6e})\n", summary.reaction_names[k],

@@ -4,6 +4,8 @@
 
 #include <petscksp.h>
 
+#include <optional>
+
 namespace perimorph::la {
 
 LinearSolver::LinearSolver(double rtol, int max_iterations) {
@@ -48,7 +50,30 @@ void LinearSolver::set_operator(Matrix& A, std::span<const Vec3> node_coordinate
 
 SolveReport LinearSolver::solve(const Vector& b, Vector& x) {
   PERIMORPH_ASSERT(A_ != nullptr, "set_operator must be called before solve");
+  PetscBool reuse = PETSC_FALSE;
+  PM_PETSC(KSPGetReusePreconditioner(ksp_, &reuse));
+  // A reused preconditioner was built for an earlier operator (before bonds failed or alpha
+  // grew); when the Krylov solve diverges with it, it is rebuilt for the present operator and
+  // the solve retried once from the same initial guess, so that the reuse stays an
+  // optimisation and never decides whether a run can go on.
+  std::optional<Vector> x0;
+  if (reuse) {
+    x0.emplace(x.size(), 1);
+    x0->copy_from(x);
+  }
   PM_PETSC(KSPSolve(ksp_, b.read_handle(), x.handle()));
+  bool rebuilt = false;
+  if (reuse) {
+    KSPConvergedReason first;
+    PM_PETSC(KSPGetConvergedReason(ksp_, &first));
+    if (first < 0) {
+      x.copy_from(*x0);
+      PM_PETSC(KSPSetReusePreconditioner(ksp_, PETSC_FALSE));
+      PM_PETSC(KSPSolve(ksp_, b.read_handle(), x.handle()));
+      PM_PETSC(KSPSetReusePreconditioner(ksp_, PETSC_TRUE));
+      rebuilt = true;
+    }
+  }
   SolveReport report;
   KSPConvergedReason reason;
   PM_PETSC(KSPGetConvergedReason(ksp_, &reason));
@@ -56,6 +81,7 @@ SolveReport LinearSolver::solve(const Vector& b, Vector& x) {
   PM_PETSC(KSPGetIterationNumber(ksp_, &its));
   report.iterations = static_cast<int>(its);
   report.reason = KSPConvergedReasons[reason];
+  report.rebuilt_preconditioner = rebuilt;
   KSPType ktype = nullptr;
   PM_PETSC(KSPGetType(ksp_, &ktype));
   PC pc = nullptr;
@@ -73,10 +99,11 @@ SolveReport LinearSolver::solve(const Vector& b, Vector& x) {
 
   if (reason < 0)
     throw SolverError(fmt::format(
-        "the linear solver ({} + {}) diverged: {} after {} iterations, relative residual {:.3e}. "
+        "the linear solver ({} + {}) diverged: {} after {} iterations, relative residual {:.3e}{}. "
         "Try a direct solve (-ksp_type preonly -pc_type cholesky), more iterations (-ksp_max_it), "
         "or check the boundary conditions: an unconstrained rigid-body motion makes the matrix singular",
-        report.ksp_type, report.pc_type, report.reason, report.iterations, report.relative_residual));
+        report.ksp_type, report.pc_type, report.reason, report.iterations, report.relative_residual,
+        rebuilt ? " (also with the reused preconditioner rebuilt for this matrix)" : ""));
   if (!x.all_finite() || !std::isfinite(report.relative_residual))
     throw SolverError(
         fmt::format("the solution contains NaN or Inf ({} + {}, {} iterations); the matrix is "

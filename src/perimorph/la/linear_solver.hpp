@@ -18,6 +18,7 @@ struct SolveReport {
   double relative_residual = 0.0;  ///< ||b − A x|| / ||b|| (true residual)
   std::string reason;              ///< PETSc's converged/diverged reason
   std::string ksp_type, pc_type;
+  bool rebuilt_preconditioner = false;  ///< a reused preconditioner failed and was rebuilt
 };
 
 class LinearSolver {
@@ -30,8 +31,11 @@ class LinearSolver {
   /// Sets the operator (and preconditioner matrix). Call again after the
   /// matrix values change; the near-null space is attached to A.
   void set_operator(Matrix& A, std::span<const Vec3> node_coordinates, int dim);
-  /// Solves A x = b starting from x. Throws SolverError on divergence or a
-  /// non-finite solution, naming PETSc's reason and the options to try.
+  /// Solves A x = b starting from x. With -ksp_reuse_preconditioner, a solve
+  /// that diverges is retried once with the preconditioner rebuilt for the
+  /// present matrix (reported in SolveReport). Throws SolverError on
+  /// divergence or a non-finite solution, naming PETSc's reason and the
+  /// options to try.
   SolveReport solve(const Vector& b, Vector& x);
 
  private:

@@ -95,6 +95,7 @@ void QuasiStaticRun::apply_load(int i) {
   state_.load_factor = disc_->config.loading.factors[static_cast<std::size_t>(i)];
   rec_ = IncrementRecord{};
   damage_updates_ = 0;
+  newton_steps_before_ = damage_ ? damage_->newton_steps() : 0;
   failed_before_ = state_.failed.size();
   dissipated_before_ = state_.energy.dissipated;
 }
@@ -103,6 +104,7 @@ void QuasiStaticRun::solve() {
   const double lambda = state_.load_factor;
   try {
     summary_.last_solve = system_->solve(lambda, u_);
+    summary_.preconditioner_rebuilds += summary_.last_solve.rebuilt_preconditioner ? 1 : 0;
   } catch (const SolverError& e) {
     progress_->finish();
     const std::size_t failed = state_.failed.size();
@@ -246,6 +248,7 @@ void QuasiStaticRun::record(bool force_vtu) {
   if (damage_) {
     const evolution::EnergyLedger& e = state_.energy;
     rec_.damage_dissipated = e.damage_dissipated;
+    rec_.damage_newton_steps = damage_->newton_steps() - newton_steps_before_;
     rec_.overshoot = e.overshoot;
     const auto& dm = *disc_->damage;
     const int npts = dm.points_per_cell;

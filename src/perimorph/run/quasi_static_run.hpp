@@ -95,6 +95,7 @@ class QuasiStaticRun {
   evolution::BondFailure* fracture_ = nullptr;   ///< non-owning: the bond-failure component, if any
   evolution::Adaptivity* adaptivity_ = nullptr;  ///< non-owning: the adaptivity component, if any
   evolution::LocalDamage* damage_ = nullptr;     ///< non-owning: the damage component, if any
+  int newton_steps_before_ = 0;                  ///< LocalDamage::newton_steps() when the increment began
   int damage_updates_ = 0;  ///< consecutive damage updates (no bond failed, α unchanged in between)
   bool bonds_failed_in_pass_ = false;  ///< the last evolve pass broke bonds (fracture_->proposed() is new)
   std::size_t balls_written_ = 0;      ///< adaptivity_->balls() already in the output

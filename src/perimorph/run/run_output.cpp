@@ -65,8 +65,8 @@ RunOutput::RunOutput(const setup::Discretization& model, std::string directory, 
       columns.emplace_back(c);
   if (damage_) {
     if (!fracture_) columns.insert(columns.end(), {"overshoot_energy", "released_energy"});
-    for (const char* c :
-         {"damage_dissipated_energy", "damage_iterations", "damaged_points", "critical_points", "max_damage"})
+    for (const char* c : {"damage_dissipated_energy", "damage_iterations", "damage_newton_steps",
+                          "damaged_points", "critical_points", "max_damage"})
       columns.emplace_back(c);
   }
   if (adaptive_)
@@ -206,9 +206,9 @@ void RunOutput::add_row(const IncrementRecord& r) {
                            static_cast<double>(r.floating_parts)});
   if (damage_) {
     if (!fracture_) row.insert(row.end(), {r.overshoot, r.released});
-    row.insert(row.end(),
-               {r.damage_dissipated, static_cast<double>(r.damage_iterations),
-                static_cast<double>(r.damaged_points), static_cast<double>(r.critical_points), r.max_damage});
+    row.insert(row.end(), {r.damage_dissipated, static_cast<double>(r.damage_iterations),
+                           static_cast<double>(r.damage_newton_steps), static_cast<double>(r.damaged_points),
+                           static_cast<double>(r.critical_points), r.max_damage});
   }
   if (adaptive_)
     row.insert(row.end(), {static_cast<double>(r.dofs), static_cast<double>(r.dg_cells),

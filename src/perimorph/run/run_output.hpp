@@ -47,6 +47,7 @@ struct IncrementRecord {
   // Runs with [material.damage] only (THEORY §6):
   double damage_dissipated = 0.0;   ///< EnergyLedger::damage_dissipated, cumulative
   int damage_iterations = 0;        ///< damage updates (fixed-point iterations) in this increment
+  int damage_newton_steps = 0;      ///< Newton steps of [damage] solver = "newton" in this increment
   std::size_t damaged_points = 0;   ///< local quadrature points with d > 0
   std::size_t critical_points = 0;  ///< local quadrature points with d = d_c
   double max_damage = 0.0;          ///< largest d

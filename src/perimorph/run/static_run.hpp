@@ -54,6 +54,8 @@ struct RunSummary {
   double strain_energy = 0.0;
   double external_work = 0.0;
   la::SolveReport last_solve;
+  /// Solves whose reused preconditioner diverged and was rebuilt (la::LinearSolver).
+  int preconditioner_rebuilds = 0;
   std::vector<IncrementRecord> history;  ///< one record per completed increment (what the CSV holds)
   /// α of the model the run ended on (grown with [adaptivity]).
   alpha::AlphaField alpha = alpha::AlphaField::constant(0.0);

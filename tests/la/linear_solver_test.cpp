@@ -1,0 +1,117 @@
+// la::LinearSolver with -ksp_reuse_preconditioner: a preconditioner built for
+// an earlier matrix that makes the Krylov solve fail on the present one is
+// rebuilt and the solve retried (reported); without reuse nothing is retried;
+// a solve that fails also with the rebuilt preconditioner throws and says so.
+
+#include "perimorph/la/linear_solver.hpp"
+#include "perimorph/assembly/sparsity.hpp"
+#include "perimorph/core/error.hpp"
+#include "perimorph/la/petsc_session.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace perimorph {
+namespace {
+
+constexpr int n = 4;
+
+assembly::SparsityPattern diagonal_pattern() {
+  assembly::SparsityPattern p;
+  p.block_size = 1;
+  p.row_offsets = {0, 1, 2, 3, 4};
+  p.columns = {0, 1, 2, 3};
+  return p;
+}
+
+void set_diagonal(la::Matrix& A, const std::array<double, n>& d) {
+  A.zero_entries();
+  for (Index i = 0; i < n; ++i) {
+    const std::array<Index, 1> row{i};
+    const std::array<double, 1> v{d[static_cast<std::size_t>(i)]};
+    A.add(row, row, v);
+  }
+  A.finalize();
+}
+
+/// Jacobi is exact on a diagonal matrix: one CG iteration when it is built for
+/// the matrix; the identity (Jacobi of I, reused) needs four on diag(1, 10, 100, 1000).
+struct LaLinearSolverReuse : ::testing::Test {
+  // Set explicitly: the options database is global and other tests of the
+  // same process may have left a solver in it.
+  void SetUp() override {
+    la::set_option("-ksp_type", "cg");
+    la::set_option("-pc_type", "jacobi");
+    la::set_option("-ksp_rtol", "1e-10");
+    la::set_option("-ksp_max_it", "1");
+  }
+  void TearDown() override {
+    for (const char* o : {"-ksp_type", "-pc_type", "-ksp_rtol", "-ksp_max_it", "-ksp_reuse_preconditioner"})
+      la::clear_option(o);
+  }
+  std::vector<Vec3> nodes = std::vector<Vec3>(n, Vec3::Zero());
+};
+
+TEST_F(LaLinearSolverReuse, ReusedPreconditionerThatFailsIsRebuiltAndTheSolveRetried) {
+  la::set_option("-ksp_reuse_preconditioner");
+  la::LinearSolver solver(1e-10, 1);
+  la::Matrix A(diagonal_pattern());
+  la::Vector b(n, 1), x(n, 1);
+  b.set_all(1.0);
+  set_diagonal(A, {1, 1, 1, 1});
+  solver.set_operator(A, nodes, 1);
+  x.set_all(0.0);
+  EXPECT_FALSE(solver.solve(b, x).rebuilt_preconditioner);
+
+  set_diagonal(A, {1, 10, 100, 1000});
+  solver.set_operator(A, nodes, 1);
+  x.set_all(0.0);
+  const la::SolveReport rep = solver.solve(b, x);
+  EXPECT_TRUE(rep.rebuilt_preconditioner);
+  EXPECT_LT(rep.relative_residual, 1e-12);
+  const std::vector<double> xs = x.to_std();
+  EXPECT_NEAR(xs[3], 1e-3, 1e-15);
+
+  // The rebuilt preconditioner is reused again: the same matrix needs no rebuild.
+  x.set_all(0.0);
+  EXPECT_FALSE(solver.solve(b, x).rebuilt_preconditioner);
+}
+
+TEST_F(LaLinearSolverReuse, WithoutReuseNothingIsRetried) {
+  la::LinearSolver solver(1e-10, 1);
+  la::Matrix A(diagonal_pattern());
+  la::Vector b(n, 1), x(n, 1);
+  b.set_all(1.0);
+  set_diagonal(A, {1, 1, 1, 1});
+  solver.set_operator(A, nodes, 1);
+  x.set_all(0.0);
+  solver.solve(b, x);
+  set_diagonal(A, {1, 10, 100, 1000});
+  solver.set_operator(A, nodes, 1);
+  x.set_all(0.0);
+  EXPECT_FALSE(solver.solve(b, x).rebuilt_preconditioner);
+}
+
+TEST_F(LaLinearSolverReuse, FailureWithTheRebuiltPreconditionerThrowsAndSaysSo) {
+  la::set_option("-ksp_reuse_preconditioner");
+  la::set_option("-pc_type", "none");
+  la::LinearSolver solver(1e-10, 1);
+  la::Matrix A(diagonal_pattern());
+  la::Vector b(n, 1), x(n, 1);
+  b.set_all(1.0);
+  set_diagonal(A, {1, 10, 100, 1000});
+  solver.set_operator(A, nodes, 1);
+  x.set_all(0.0);
+  try {
+    solver.solve(b, x);
+    FAIL() << "expected a SolverError";
+  } catch (const SolverError& e) {
+    EXPECT_NE(std::string(e.what()).find("rebuilt"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace perimorph
