@@ -1,51 +1,43 @@
 // Secant (fixed point) against Newton through PETSc SNES for the local damage
-// solve of an increment (issue 15, THEORY §6; docs/benchmarks/damage_solver.md).
+// solve of an increment (issue 15, THEORY §6; docs/benchmarks/damage-solver.md).
 //
 // The model: a case with a damageable material and no [nonlocal] (the B8
 // specimen's local damage model alone: examples/b8_damage_handover_3d/
-// local_alone.toml), on a mesh and a load path given here. Each increment
-// starts from the last converged one (u, d_prev) and is solved twice:
+// local_alone.toml), on a mesh and a load path given here. The case is run
+// twice through perimorph's own run loop (run::run_static), once with each
+// `[damage] solver`:
 //
-//   secant   what perimorph runs (evolution/local_damage.cpp, thesis fig. 3.22):
-//            solve with the secant stiffness (1 − d) C₀, update d at every
-//            point, again until max Δd ≤ the case's [damage] tolerance;
-//            linear solves = updates + 1.
-//   newton   F(u) = K_sec(d(u)) u − λ f = 0 with d(u) = min(d_c, max(d_prev,
-//            (Y(ε(u)) − k0)/k1)) (3.41), the consistent tangent of
-//            fem::damage_tangent, SNES newtonls (backtracking line search),
-//            ||F|| ≤ 1e-6 ||F(u₀)|| (stricter than the secant's
-//            stop: its last solve is in equilibrium with d off by ≤ the tolerance); linear solves = Newton
-//            steps.
+//   secant   the thesis' fixed point (evolution/local_damage.cpp, fig. 3.22):
+//            solve with the secant stiffness (1 − d) C₀ (updated by
+//            downdates), update d at every point, again until max Δd ≤ the
+//            case's [damage] tolerance; linear solves = 1 + re-solves.
+//   newton   before each damage update, evolution/damage_newton.cpp solves
+//            the increment with the consistent tangent (SNES, at most 12
+//            steps, each one LU solve); the fixed point's own check then ends
+//            the increment (it finishes an increment where Newton failed);
+//            linear solves = 1 + re-solves + Newton steps.
 //
-// Both solve each linear system with LU (the same factorization cost per
-// solve), so the count of solves is the cost to compare; the wall and CPU
-// time of each method are printed beside it (assembly included: each
-// iteration of either method reassembles K here).
+// Every linear system is solved by LU (-ksp_type preonly -pc_type lu and
+// SNES's default), so a solve costs about the same in both and the count of
+// solves is the cost to compare; the wall and CPU time of each run are
+// printed beside it.
 //
 //   damage_solver_bench CASE nx ny nz INCREMENTS [d_c]   → JSON on stdout
 //
 // d_c, if given, overrides the material's (the hybrid's d_c = 0.2: the
 // hardening branch the hybrid sees before the handover).
 
-#include "perimorph/assembly/local_assembly.hpp"
-#include "perimorph/assembly/sparsity.hpp"
 #include "perimorph/casefile/parse_case.hpp"
-#include "perimorph/core/error.hpp"
-#include "perimorph/fem/damage_law.hpp"
-#include "perimorph/la/nonlinear_solver.hpp"
 #include "perimorph/la/petsc_session.hpp"
-#include "perimorph/setup/boundary_conditions.hpp"
-#include "perimorph/setup/damage_model.hpp"
+#include "perimorph/run/static_run.hpp"
 #include "perimorph/setup/discretization.hpp"
-#include "perimorph/system/constrained_system.hpp"
-#include "perimorph/system/stiffness.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <ctime>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -62,52 +54,35 @@ struct Clock {
   double cpu_s() const { return static_cast<double>(std::clock() - cpu) / CLOCKS_PER_SEC; }
 };
 
-/// d at every local point after the step from `d_prev` to the strain of `u`
-/// (3.41); `loading` (if given) marks the points on the loading branch.
-std::vector<double> damage_at(const setup::Discretization& model, std::span<const double> u,
-                              std::span<const double> d_prev, std::vector<char>* loading = nullptr) {
-  const setup::DamageModel& dm = *model.damage;
-  const int npts = dm.points_per_cell;
-  const int nv = fem::voigt_size(model.dim());
-  std::vector<double> d(d_prev.begin(), d_prev.end()), strain(static_cast<std::size_t>(npts * nv)),
-      volume(static_cast<std::size_t>(npts));
-  if (loading) loading->assign(d.size(), 0);
-  const auto space = model.local_space();
-  for (Index c = 0; c < model.mesh.num_cells(); ++c) {
-    const int law = dm.law_of(c);
-    if (law < 0) continue;
-    const auto& L = dm.laws[static_cast<std::size_t>(law)];
-    const double* C0 = dm.C0[static_cast<std::size_t>(law)].data();
-    assembly::strains_at_points(space, c, u, strain, volume);
-    for (int q = 0; q < npts; ++q) {
-      const auto k = static_cast<std::size_t>(c * npts + q);
-      const double Y = fem::damage_force(C0, strain.data() + q * nv, nv);
-      d[k] = fem::updated_damage(L, Y, d_prev[k]);
-      if (loading) (*loading)[k] = fem::damage_loading(L, Y, d_prev[k]) ? 1 : 0;
-    }
-  }
-  return d;
-}
-
-/// Reaction along x on the dofs pulled in +x: Σ (K u)_i over prescribed x dofs with a positive value.
-double reaction(const setup::Discretization& model, const setup::DirichletData& bc, la::Matrix& K,
-                std::span<const double> u) {
-  la::Vector uv(static_cast<Index>(u.size()), 1), f(static_cast<Index>(u.size()), 1);
-  uv.assign(u);
-  K.mult(uv, f);
-  const auto fv = f.to_std();
-  double r = 0.0;
-  for (std::size_t i = 0; i < bc.dofs.size(); ++i)
-    if (bc.values[i] > 0 && bc.dofs[i] % model.dim() == 0) r += fv[static_cast<std::size_t>(bc.dofs[i])];
-  return r;
-}
-
 struct IncrementResult {
-  int solves = 0;
+  int solves = 0, updates = 0, newton_steps = 0;
   double reaction = 0.0, max_d = 0.0;
-  bool converged = true;
-  std::string reason;
 };
+
+struct PathResult {
+  std::vector<IncrementResult> increments;
+  double wall_s = 0.0, cpu_s = 0.0;
+};
+
+/// Runs the case with `solver`; the reaction is the x component on the set "xmax".
+PathResult run_path(casefile::CaseConfig config, casefile::DamageSolver solver) {
+  config.damage.solver = solver;
+  const auto dir =
+      std::filesystem::temp_directory_path() /
+      fmt::format("damage_solver_bench_{}", solver == casefile::DamageSolver::newton ? "newton" : "secant");
+  Clock clock;
+  const setup::Discretization model = setup::build_discretization(config);
+  const run::RunSummary summary = run::run_static(model, {dir.string(), true, nullptr});
+  PathResult out{{}, clock.wall_s(), clock.cpu_s()};
+  const auto xmax = std::find(summary.reaction_names.begin(), summary.reaction_names.end(), "xmax");
+  const auto set = static_cast<std::size_t>(xmax - summary.reaction_names.begin());
+  for (const run::IncrementRecord& r : summary.history)
+    out.increments.push_back({1 + r.break_iterations + r.damage_newton_steps, r.damage_iterations,
+                              r.damage_newton_steps, set < r.reactions.size() ? r.reactions[set].x() : 0.0,
+                              r.max_damage});
+  std::filesystem::remove_all(dir);
+  return out;
+}
 
 }  // namespace
 
@@ -123,149 +98,35 @@ int main(int argc, char** argv) {
   const int n = std::stoi(argv[5]);
   config.loading.factors.clear();
   for (int i = 1; i <= n; ++i) config.loading.factors.push_back(static_cast<double>(i) / n);
-  if (argc > 6)
-    for (auto& m : config.materials)
-      if (m.damage.enabled) m.damage.d_c = std::stod(argv[6]);
-  config.solver.petsc_options = "";
-  la::add_options("-ksp_type preonly -pc_type lu");
-  const setup::Discretization model = setup::build_discretization(config);
-  PERIMORPH_ASSERT(model.damage.has_value() && !model.nonlocal, "a damageable case without [nonlocal]");
-  const setup::DamageModel& dm = *model.damage;
-  const int nv = fem::voigt_size(model.dim());
-  const int npts = dm.points_per_cell;
-  const double tol = config.damage.tolerance;
-  const setup::DirichletData bc = setup::build_dirichlet(model);
-  const std::vector<double> F = setup::build_external_force(model);
-  const Index ndofs = model.dofmap.num_dofs();
-  const auto space = model.local_space();
-  la::Matrix Ks(assembly::build_sparsity(model.dofmap)), J(assembly::build_sparsity(model.dofmap));
-
-  // ---------------------------------------------------------------- secant
-  std::vector<IncrementResult> secant(static_cast<std::size_t>(n)), newton(static_cast<std::size_t>(n));
-  Clock secant_clock;
-  {
-    std::vector<double> d(static_cast<std::size_t>(model.mesh.num_cells() * npts), 0.0);
-    la::Vector u(ndofs, model.dim());
-    for (int i = 0; i < n; ++i) {
-      auto& r = secant[static_cast<std::size_t>(i)];
-      for (int it = 0;; ++it) {
-        system::ConstrainedSystem sys(model, system::assemble_stiffness(model, nullptr, d).K, bc, F);
-        sys.attach_solver();
-        sys.solve(config.loading.factors[static_cast<std::size_t>(i)], u);
-        ++r.solves;
-        const auto uu = u.to_std();
-        const auto d_new = damage_at(model, uu, d);
-        double change = 0.0;
-        for (std::size_t k = 0; k < d.size(); ++k) change = std::max(change, d_new[k] - d[k]);
-        if (change <= tol || it >= config.damage.max_iterations) {
-          r.converged = change <= tol;
-          r.reaction = reaction(model, bc, sys.K(), uu);
-          r.max_d = *std::max_element(d.begin(), d.end());
-          break;
-        }
-        d = d_new;
-      }
+  double d_c = 0.0;
+  for (auto& m : config.materials)
+    if (m.damage.enabled) {
+      if (argc > 6) m.damage.d_c = std::stod(argv[6]);
+      d_c = m.damage.d_c;
     }
-  }
-  const double secant_wall = secant_clock.wall_s(), secant_cpu = secant_clock.cpu_s();
-
-  // ---------------------------------------------------------------- newton
-  Clock newton_clock;
-  {
-    std::vector<double> d_prev(static_cast<std::size_t>(model.mesh.num_cells() * npts), 0.0);
-    double lambda = 0.0;
-    auto assemble_secant = [&](std::span<const double> u, la::Matrix& K) {
-      const auto d = damage_at(model, u, d_prev);
-      assembly::assemble_elasticity(space, setup::damaged_stiffness(model.stiffness, dm, d), K);
-    };
-    auto residual = [&](std::span<const double> u, std::span<double> r) {
-      Ks.zero_entries();
-      assemble_secant(u, Ks);
-      Ks.finalize();
-      la::Vector uv(ndofs, 1), f(ndofs, 1);
-      uv.assign(u);
-      Ks.mult(uv, f);
-      const auto fv = f.to_std();
-      for (std::size_t k = 0; k < r.size(); ++k) r[k] = fv[k] - lambda * F[k];
-      for (std::size_t k = 0; k < bc.dofs.size(); ++k) {
-        const auto dof = static_cast<std::size_t>(bc.dofs[k]);
-        r[dof] = u[dof] - lambda * bc.values[k];
-      }
-    };
-    auto jacobian = [&](std::span<const double> u, la::Matrix& Jm) {
-      std::vector<char> loading;
-      const auto d = damage_at(model, u, d_prev, &loading);
-      fem::ConstitutiveField C = setup::damaged_stiffness(model.stiffness, dm, d);
-      std::vector<double> strain(static_cast<std::size_t>(npts * nv)), volume(static_cast<std::size_t>(npts));
-      std::vector<Eigen::MatrixXd> T(static_cast<std::size_t>(npts));
-      for (Index c = 0; c < model.mesh.num_cells(); ++c) {
-        const int law = dm.law_of(c);
-        if (law < 0) continue;
-        bool any = false;
-        for (int q = 0; q < npts; ++q) any = any || loading[static_cast<std::size_t>(c * npts + q)];
-        if (!any) continue;
-        assembly::strains_at_points(space, c, u, strain, volume);
-        for (int q = 0; q < npts; ++q) {
-          auto& t = T[static_cast<std::size_t>(q)];
-          t.resize(nv, nv);
-          fem::damage_tangent(dm.laws[static_cast<std::size_t>(law)],
-                              dm.C0[static_cast<std::size_t>(law)].data(), strain.data() + q * nv,
-                              d_prev[static_cast<std::size_t>(c * npts + q)], nv, t.data());
-          // damage_tangent is the full dσ/dε of the damageable law; add what
-          // the field holds beyond (1 − d) C₀ (none for one isotropic material).
-          t += C.matrix(c, q) -
-               (1.0 - d[static_cast<std::size_t>(c * npts + q)]) * dm.C0[static_cast<std::size_t>(law)];
-        }
-        C.set_cell_points(c, T);
-      }
-      assembly::assemble_elasticity(space, C, Jm);
-      Jm.finalize();
-      la::Vector x(ndofs, 1), rhs(ndofs, 1);
-      Jm.eliminate_dirichlet(bc.dofs, x, rhs);
-    };
-    la::NonlinearSolver snes(J, residual, jacobian, 1e-6, 1e-300, 100, "damage_");
-    la::Vector u(ndofs, model.dim());
-    for (int i = 0; i < n; ++i) {
-      lambda = config.loading.factors[static_cast<std::size_t>(i)];
-      auto uu = u.to_std();
-      for (std::size_t k = 0; k < bc.dofs.size(); ++k)
-        uu[static_cast<std::size_t>(bc.dofs[k])] = lambda * bc.values[k];
-      u.assign(uu);
-      const auto rep = snes.solve(u);
-      auto& r = newton[static_cast<std::size_t>(i)];
-      r.solves = rep.linear_solves;
-      r.converged = rep.converged;
-      r.reason = rep.reason;
-      uu = u.to_std();
-      d_prev = damage_at(model, uu, d_prev);
-      Ks.zero_entries();
-      assembly::assemble_elasticity(space, setup::damaged_stiffness(model.stiffness, dm, d_prev), Ks);
-      Ks.finalize();
-      r.reaction = reaction(model, bc, Ks, uu);
-      r.max_d = *std::max_element(d_prev.begin(), d_prev.end());
-    }
-  }
-  const double newton_wall = newton_clock.wall_s(), newton_cpu = newton_clock.cpu_s();
+  config.solver.petsc_options = "-ksp_type preonly -pc_type lu";
+  config.output.vtu = false;
+  const PathResult secant = run_path(config, casefile::DamageSolver::secant);
+  const PathResult newton = run_path(config, casefile::DamageSolver::newton);
 
   fmt::print(
       "{{\"case\": \"{}\", \"cells\": [{}, {}, {}], \"increments\": {}, \"d_c\": {}, \"tolerance\": {},\n",
-      argv[1], argv[2], argv[3], argv[4], n, dm.laws[0].d_c, tol);
+      argv[1], argv[2], argv[3], argv[4], n, d_c, config.damage.tolerance);
   fmt::print(
       " \"secant\": {{\"wall_s\": {:.3f}, \"cpu_s\": {:.3f}}}, \"newton\": {{\"wall_s\": {:.3f}, \"cpu_s\": "
       "{:.3f}}},\n",
-      secant_wall, secant_cpu, newton_wall, newton_cpu);
+      secant.wall_s, secant.cpu_s, newton.wall_s, newton.cpu_s);
   fmt::print(" \"increments_table\": [\n");
-  for (int i = 0; i < n; ++i) {
-    const auto& s = secant[static_cast<std::size_t>(i)];
-    const auto& w = newton[static_cast<std::size_t>(i)];
+  const std::size_t rows = std::min(secant.increments.size(), newton.increments.size());
+  for (std::size_t i = 0; i < rows; ++i) {
+    const auto& s = secant.increments[i];
+    const auto& w = newton.increments[i];
     fmt::print(
-        "  {{\"increment\": {}, \"secant_solves\": {}, \"secant_converged\": {}, \"secant_reaction\": "
-        "{:.10g}, "
-        "\"secant_max_d\": {:.6g}, \"newton_solves\": {}, \"newton_converged\": {}, \"newton_reaction\": "
-        "{:.10g}, "
-        "\"newton_max_d\": {:.6g}, \"newton_reason\": \"{}\"}}{}\n",
-        i + 1, s.solves, s.converged, s.reaction, s.max_d, w.solves, w.converged, w.reaction, w.max_d,
-        w.reason, i + 1 < n ? "," : "");
+        "  {{\"increment\": {}, \"secant_solves\": {}, \"secant_updates\": {}, \"secant_reaction\": {:.10g}, "
+        "\"secant_max_d\": {:.6g}, \"newton_solves\": {}, \"newton_steps\": {}, \"newton_updates\": {}, "
+        "\"newton_reaction\": {:.10g}, \"newton_max_d\": {:.6g}}}{}\n",
+        i + 1, s.solves, s.updates, s.reaction, s.max_d, w.solves, w.newton_steps, w.updates, w.reaction,
+        w.max_d, i + 1 < rows ? "," : "");
   }
   fmt::print(" ]}}\n");
   return 0;
