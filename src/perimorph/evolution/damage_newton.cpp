@@ -117,7 +117,9 @@ DamageNewtonReport solve_damage_newton(const setup::Discretization& disc,
   };
   // Quadratic convergence needs a handful of steps; more means a kink of d(u)
   // (the cap at d_c, a point leaving the loading branch) is in the way.
-  la::NonlinearSolver snes(J, residual, jacobian, 1e-6, 1e-300, 12, "damage_");
+  // Each step by GMRES with the run's preconditioner as it stands (with
+  // -ksp_reuse_preconditioner, the GAMG of an earlier A(h): no set-up here).
+  la::NonlinearSolver snes(J, residual, jacobian, 1e-6, 1e-300, 12, "damage_", system.solver());
   la::Vector x(n, disc.dim());
   x.assign(u);
   const la::NonlinearReport rep = snes.solve(x);

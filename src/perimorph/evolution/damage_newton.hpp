@@ -11,7 +11,9 @@
 // The Jacobian is the consistent one: A(h) − P Σ ∫ Bᵀ [(d − h) C₀ +
 // (C₀ε)(C₀ε)ᵀ/k1 at the loading points] B P (fem::damage_tangent). Solved by
 // PETSc SNES (la::NonlinearSolver, options prefix -damage_; default Newton
-// with a line search and an LU solve of each step). The caller updates the
+// with a line search, each step solved by GMRES preconditioned by the run's
+// own preconditioner of A, e.g. the reused GAMG; -damage_ksp_type preonly
+// -damage_pc_type lu for a direct solve of each step). The caller updates the
 // damage from the returned u (LocalDamage), so the fixed point of the thesis
 // starts at its solution and its own check ends the increment.
 

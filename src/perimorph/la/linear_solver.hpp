@@ -38,6 +38,9 @@ class LinearSolver {
   /// options to try.
   SolveReport solve(const Vector& b, Vector& x);
 
+  /// The KSP (for la/ only: NonlinearSolver applies its preconditioner).
+  PetscKspHandle handle() const { return ksp_; }
+
  private:
   PetscKspHandle ksp_ = nullptr;
   const Matrix* A_ = nullptr;  ///< non-owning: the operator of set_operator, kept alive by the caller

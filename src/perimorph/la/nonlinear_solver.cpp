@@ -38,10 +38,41 @@ PetscErrorCode jacobian_callback(SNES /*snes*/, Vec u, Mat /*J*/, Mat /*P*/, voi
   return 0;
 }
 
+/// PCSHELL apply: the preconditioner of another KSP (its context), set up for
+/// that KSP's operator as PCSetUp decides (kept when it reuses it).
+PetscErrorCode borrowed_preconditioner(PC pc, Vec x, Vec y) {
+  void* ctx = nullptr;
+  PetscCall(PCShellGetContext(pc, &ctx));
+  PC inner = nullptr;
+  PetscCall(KSPGetPC(static_cast<KSP>(ctx), &inner));
+  PetscCall(PCApply(inner, x, y));
+  return 0;
+}
+
+/// SNES's default test, and a stop when ||F|| fell by less than 10 % in each of
+/// the last two steps: a kink of F (e.g. a cap) stalls Newton, and its steps
+/// are then wasted work.
+PetscErrorCode converged_or_stagnated(SNES snes, PetscInt it, PetscReal xnorm, PetscReal gnorm,
+                                      PetscReal fnorm, SNESConvergedReason* reason, void* ctx) {
+  PetscCall(SNESConvergedDefault(snes, it, xnorm, gnorm, fnorm, reason, nullptr));
+  auto& solver = *static_cast<NonlinearSolver*>(ctx);
+  auto& h = solver.residual_norms;
+  if (it == 0) h.clear();
+  h.push_back(fnorm);
+  const std::size_t n = h.size();
+  if (*reason == SNES_CONVERGED_ITERATING && n >= 3 && h[n - 1] > 0.9 * h[n - 2] &&
+      h[n - 2] > 0.9 * h[n - 3]) {
+    *reason = SNES_DIVERGED_DTOL;
+    solver.stagnated = true;
+  }
+  return 0;
+}
+
 }  // namespace
 
 NonlinearSolver::NonlinearSolver(Matrix& J, Residual residual, Jacobian jacobian, double rtol, double atol,
-                                 int max_iterations, const std::string& options_prefix)
+                                 int max_iterations, const std::string& options_prefix,
+                                 const LinearSolver* preconditioner)
     : J_(J), residual_(std::move(residual)), jacobian_(std::move(jacobian)), r_(J.rows(), 1) {
   PM_PETSC(SNESCreate(PETSC_COMM_WORLD, &snes_));
   PM_PETSC(SNESSetOptionsPrefix(snes_, options_prefix.c_str()));
@@ -51,10 +82,22 @@ NonlinearSolver::NonlinearSolver(Matrix& J, Residual residual, Jacobian jacobian
   PM_PETSC(SNESSetTolerances(snes_, atol, rtol, PETSC_DEFAULT, max_iterations, PETSC_DEFAULT));
   KSP ksp = nullptr;
   PM_PETSC(SNESGetKSP(snes_, &ksp));
-  PM_PETSC(KSPSetType(ksp, KSPPREONLY));
   PC pc = nullptr;
   PM_PETSC(KSPGetPC(ksp, &pc));
-  PM_PETSC(PCSetType(pc, PCLU));
+  if (preconditioner) {
+    PM_PETSC(KSPSetType(ksp, KSPGMRES));
+    // A step the borrowed preconditioner cannot solve in 200 iterations is
+    // not worth solving: SNES stops (DIVERGED_LINEAR_SOLVE).
+    PM_PETSC(KSPSetTolerances(ksp, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, 200));
+    PM_PETSC(PCSetType(pc, PCSHELL));
+    PM_PETSC(PCShellSetContext(pc, preconditioner->handle()));
+    PM_PETSC(PCShellSetApply(pc, borrowed_preconditioner));
+    PM_PETSC(PCShellSetName(pc, "the run's preconditioner"));
+  } else {
+    PM_PETSC(KSPSetType(ksp, KSPPREONLY));
+    PM_PETSC(PCSetType(pc, PCLU));
+  }
+  PM_PETSC(SNESSetConvergenceTest(snes_, converged_or_stagnated, this, nullptr));
   PM_PETSC(SNESSetFromOptions(snes_));
 }
 
@@ -64,6 +107,7 @@ NonlinearSolver::~NonlinearSolver() {
 
 NonlinearReport NonlinearSolver::solve(Vector& u) {
   residual_evaluations = 0;
+  stagnated = false;
   PM_PETSC(SNESSolve(snes_, nullptr, u.handle()));
   NonlinearReport report;
   SNESConvergedReason reason;
@@ -80,7 +124,8 @@ NonlinearReport NonlinearSolver::solve(Vector& u) {
   report.linear_solves = preonly ? static_cast<int>(its) : static_cast<int>(lits);
   report.residual_evaluations = residual_evaluations;
   report.converged = reason > 0;
-  report.reason = SNESConvergedReasons[reason];
+  report.reason = stagnated ? "STAGNATED (||F|| fell by less than 10 % in two consecutive steps)"
+                            : SNESConvergedReasons[reason];
   PetscReal norm = 0.0;
   PM_PETSC(SNESGetFunctionNorm(snes_, &norm));
   report.residual_norm = norm;

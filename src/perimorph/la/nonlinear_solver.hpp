@@ -2,11 +2,15 @@
 // PETSc SNES wrapper: Newton's method with a line search on F(u) = 0, the
 // residual and the Jacobian given as callbacks on plain arrays (so that the
 // assembly that fills them needs no PETSc). Defaults: newtonls with the
-// backtracking line search, a direct LU solve of each Newton step; every
-// PETSc option under the prefix overrides them (-<prefix>snes_type,
-// -<prefix>ksp_type, -<prefix>pc_type, -<prefix>snes_linesearch_type, ...).
+// backtracking line search, a direct LU solve of each Newton step; or, given
+// a LinearSolver, GMRES preconditioned by that solver's preconditioner (a
+// shell PC applying it as it stands: a reused GAMG of a nearby operator costs
+// no new set-up). Every PETSc option under the prefix overrides them
+// (-<prefix>snes_type, -<prefix>ksp_type, -<prefix>pc_type,
+// -<prefix>snes_linesearch_type, ...).
 
 #include "perimorph/core/types.hpp"
+#include "perimorph/la/linear_solver.hpp"
 #include "perimorph/la/matrix.hpp"
 #include "perimorph/la/petsc_fwd.hpp"
 #include "perimorph/la/vector.hpp"
@@ -14,6 +18,7 @@
 #include <functional>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace perimorph::la {
 
@@ -36,15 +41,19 @@ class NonlinearSolver {
 
   /// `J` (its pattern holds every entry the Jacobian adds) is owned by the
   /// caller and outlives the solver. Convergence: ||F|| ≤ max(atol, rtol ||F(u₀)||)
-  /// within max_iterations steps.
+  /// within max_iterations steps. `preconditioner` (optional, outlives the
+  /// solver): the Newton steps are solved by GMRES with its preconditioner.
   NonlinearSolver(Matrix& J, Residual residual, Jacobian jacobian, double rtol, double atol,
-                  int max_iterations, const std::string& options_prefix);
+                  int max_iterations, const std::string& options_prefix,
+                  const LinearSolver* preconditioner = nullptr);
   ~NonlinearSolver();
   NonlinearSolver(const NonlinearSolver&) = delete;
   NonlinearSolver& operator=(const NonlinearSolver&) = delete;
 
   /// Solves F(u) = 0 from u (the initial guess in, the last iterate out).
-  /// Never throws for non-convergence: the report says how it ended.
+  /// Never throws for non-convergence: the report says how it ended. Stops
+  /// early (not converged, reason STAGNATED) when ||F|| fell by less than
+  /// 10 % in each of two consecutive steps.
   NonlinearReport solve(Vector& u);
 
   // For the PETSc callbacks (la/nonlinear_solver.cpp).
@@ -52,6 +61,8 @@ class NonlinearSolver {
   const Jacobian& jacobian() const { return jacobian_; }
   Matrix& jacobian_matrix() { return J_; }
   int residual_evaluations = 0;
+  std::vector<double> residual_norms;  ///< ||F|| after each step of the current solve
+  bool stagnated = false;
 
  private:
   PetscSnesHandle snes_ = nullptr;

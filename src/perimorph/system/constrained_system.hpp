@@ -37,6 +37,8 @@ class ConstrainedSystem {
   /// Solves A u = λ rhs_unit (u: the initial guess in, the solution out).
   /// Throws SolverError (la::LinearSolver). Requires attach_solver.
   la::SolveReport solve(double lambda, la::Vector& u);
+  /// The attached solver (null before attach_solver).
+  const la::LinearSolver* solver() const { return solver_.get(); }
   /// A has changed (a downdate or held dofs): the solver takes it again.
   void operator_changed();
 
