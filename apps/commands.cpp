@@ -129,7 +129,7 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
                summary.last_solve.pc_type, summary.last_solve.iterations,
                summary.last_solve.relative_residual);
     if (summary.preconditioner_rebuilds > 0)
-      fmt::print("{} solves diverged with the reused preconditioner and converged with it rebuilt\n",
+      fmt::print("{} solves rebuilt the reused preconditioner (it failed, or the iterations had grown)\n",
                  summary.preconditioner_rebuilds);
     fmt::print("strain energy {:.6e}, external work {:.6e}\n", summary.strain_energy, summary.external_work);
     for (std::size_t k = 0; k < summary.reactions.size(); ++k)

@@ -1,7 +1,9 @@
 // la::LinearSolver with -ksp_reuse_preconditioner: a preconditioner built for
 // an earlier matrix that makes the Krylov solve fail on the present one is
-// rebuilt and the solve retried (reported); without reuse nothing is retried;
-// a solve that fails also with the rebuilt preconditioner throws and says so.
+// rebuilt and the solve retried (reported); one under which the iterations
+// grew beyond 2 n + 10 is rebuilt before the next solve; without reuse
+// nothing is retried; a solve that fails also with the rebuilt
+// preconditioner throws and says so.
 
 #include "perimorph/la/linear_solver.hpp"
 #include "perimorph/assembly/sparsity.hpp"
@@ -78,6 +80,51 @@ TEST_F(LaLinearSolverReuse, ReusedPreconditionerThatFailsIsRebuiltAndTheSolveRet
   // The rebuilt preconditioner is reused again: the same matrix needs no rebuild.
   x.set_all(0.0);
   EXPECT_FALSE(solver.solve(b, x).rebuilt_preconditioner);
+}
+
+TEST(LaLinearSolverReuseGrowth,
+     IterationsGrownBeyondTwiceTheirCountAfterTheBuildRebuildItBeforeTheNextSolve) {
+  // 40 distinct eigenvalues: CG with the identity (Jacobi of I, reused) needs
+  // up to 40 iterations, with Jacobi of the matrix one.
+  constexpr int m = 40;
+  la::set_option("-ksp_type", "cg");
+  la::set_option("-pc_type", "jacobi");
+  la::set_option("-ksp_reuse_preconditioner");
+  la::LinearSolver solver(1e-10, 1000);
+  for (const char* o : {"-ksp_type", "-pc_type", "-ksp_reuse_preconditioner"}) la::clear_option(o);
+  assembly::SparsityPattern p;
+  p.block_size = 1;
+  for (int i = 0; i <= m; ++i) p.row_offsets.push_back(i);
+  for (int i = 0; i < m; ++i) p.columns.push_back(i);
+  la::Matrix A(p);
+  auto set = [&](bool identity) {
+    A.zero_entries();
+    for (Index i = 0; i < m; ++i) {
+      const std::array<Index, 1> row{i};
+      const std::array<double, 1> v{identity ? 1.0 : 1.0 + 10.0 * static_cast<double>(i)};
+      A.add(row, row, v);
+    }
+    A.finalize();
+  };
+  const std::vector<Vec3> points(m, Vec3::Zero());
+  la::Vector b(m, 1), x(m, 1);
+  b.set_all(1.0);
+  set(true);
+  solver.set_operator(A, points, 1);
+  x.set_all(0.0);
+  EXPECT_LE(solver.solve(b, x).iterations, 1);  // the first build: the baseline
+  set(false);
+  solver.set_operator(A, points, 1);
+  x.set_all(0.0);
+  const la::SolveReport grown = solver.solve(b, x);  // converges, with the stale preconditioner
+  EXPECT_FALSE(grown.rebuilt_preconditioner);
+  EXPECT_GT(grown.iterations, 12);
+  x.set_all(0.0);
+  const la::SolveReport next = solver.solve(b, x);
+  EXPECT_TRUE(next.rebuilt_preconditioner);
+  EXPECT_LE(next.iterations, 1);
+  x.set_all(0.0);
+  EXPECT_FALSE(solver.solve(b, x).rebuilt_preconditioner);  // the new baseline holds
 }
 
 TEST_F(LaLinearSolverReuse, WithoutReuseNothingIsRetried) {

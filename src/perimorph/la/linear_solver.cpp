@@ -53,17 +53,22 @@ SolveReport LinearSolver::solve(const Vector& b, Vector& x) {
   PetscBool reuse = PETSC_FALSE;
   PM_PETSC(KSPGetReusePreconditioner(ksp_, &reuse));
   // A reused preconditioner was built for an earlier operator (before bonds failed or alpha
-  // grew); when the Krylov solve diverges with it, it is rebuilt for the present operator and
-  // the solve retried once from the same initial guess, so that the reuse stays an
-  // optimisation and never decides whether a run can go on.
+  // grew). It is rebuilt for the present operator before this solve when the last solve needed
+  // more than twice the iterations (+ 10) of the first one after the last build; and when the
+  // Krylov solve diverges with it, it is rebuilt and the solve retried once from the same
+  // initial guess, so that the reuse stays an optimisation and never decides whether a run
+  // can go on.
   std::optional<Vector> x0;
   if (reuse) {
     x0.emplace(x.size(), 1);
     x0->copy_from(x);
   }
+  const bool rebuild_now = reuse && rebuild_next_;
+  if (rebuild_now) PM_PETSC(KSPSetReusePreconditioner(ksp_, PETSC_FALSE));
   PM_PETSC(KSPSolve(ksp_, b.read_handle(), x.handle()));
-  bool rebuilt = false;
-  if (reuse) {
+  if (rebuild_now) PM_PETSC(KSPSetReusePreconditioner(ksp_, PETSC_TRUE));
+  bool rebuilt = rebuild_now;
+  if (reuse && !rebuild_now) {
     KSPConvergedReason first;
     PM_PETSC(KSPGetConvergedReason(ksp_, &first));
     if (first < 0) {
@@ -80,6 +85,14 @@ SolveReport LinearSolver::solve(const Vector& b, Vector& x) {
   PetscInt its = 0;
   PM_PETSC(KSPGetIterationNumber(ksp_, &its));
   report.iterations = static_cast<int>(its);
+  if (reuse) {
+    if (rebuilt || baseline_iterations_ < 0) {
+      baseline_iterations_ = report.iterations;
+      rebuild_next_ = false;
+    } else if (report.iterations > 2 * baseline_iterations_ + 10) {
+      rebuild_next_ = true;
+    }
+  }
   report.reason = KSPConvergedReasons[reason];
   report.rebuilt_preconditioner = rebuilt;
   KSPType ktype = nullptr;

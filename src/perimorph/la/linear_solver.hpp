@@ -18,7 +18,9 @@ struct SolveReport {
   double relative_residual = 0.0;  ///< ||b − A x|| / ||b|| (true residual)
   std::string reason;              ///< PETSc's converged/diverged reason
   std::string ksp_type, pc_type;
-  bool rebuilt_preconditioner = false;  ///< a reused preconditioner failed and was rebuilt
+  /// the reused preconditioner was rebuilt for this solve (it failed, or the
+  /// iterations had grown: LinearSolver::solve)
+  bool rebuilt_preconditioner = false;
 };
 
 class LinearSolver {
@@ -31,9 +33,11 @@ class LinearSolver {
   /// Sets the operator (and preconditioner matrix). Call again after the
   /// matrix values change; the near-null space is attached to A.
   void set_operator(Matrix& A, std::span<const Vec3> node_coordinates, int dim);
-  /// Solves A x = b starting from x. With -ksp_reuse_preconditioner, a solve
-  /// that diverges is retried once with the preconditioner rebuilt for the
-  /// present matrix (reported in SolveReport). Throws SolverError on
+  /// Solves A x = b starting from x. With -ksp_reuse_preconditioner, the
+  /// preconditioner is rebuilt for the present matrix before a solve when the
+  /// last one needed more than 2 n + 10 iterations, n those of the first
+  /// solve after the last build, and a solve that diverges is retried once
+  /// with it rebuilt (both reported in SolveReport). Throws SolverError on
   /// divergence or a non-finite solution, naming PETSc's reason and the
   /// options to try.
   SolveReport solve(const Vector& b, Vector& x);
@@ -43,7 +47,9 @@ class LinearSolver {
 
  private:
   PetscKspHandle ksp_ = nullptr;
-  const Matrix* A_ = nullptr;  ///< non-owning: the operator of set_operator, kept alive by the caller
+  const Matrix* A_ = nullptr;
+  int baseline_iterations_ = -1;  ///< iterations of the first solve after the last build (reuse)
+  bool rebuild_next_ = false;     ///< non-owning: the operator of set_operator, kept alive by the caller
 };
 
 }  // namespace perimorph::la

@@ -54,7 +54,8 @@ struct RunSummary {
   double strain_energy = 0.0;
   double external_work = 0.0;
   la::SolveReport last_solve;
-  /// Solves whose reused preconditioner diverged and was rebuilt (la::LinearSolver).
+  /// Solves that rebuilt the reused preconditioner (la::LinearSolver: it failed, or the iterations had
+  /// grown).
   int preconditioner_rebuilds = 0;
   std::vector<IncrementRecord> history;  ///< one record per completed increment (what the CSV holds)
   /// α of the model the run ended on (grown with [adaptivity]).
