@@ -2,6 +2,7 @@
 
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/core/error.hpp"
+#include "perimorph/evolution/cell_mechanisms.hpp"
 #include "perimorph/evolution/floating_parts.hpp"
 
 #include <fmt/format.h>
@@ -13,7 +14,9 @@ namespace perimorph::evolution {
 Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSystem& system) {
   detached_.clear();
   pins_.clear();
+  cell_pins_.clear();
   parts_ = 0;
+  mechanisms_ = 0;
   const std::size_t first = seen_;
   seen_ = state.failed_in_order.size();
   const bool downdated = system.downdate_count() != downdates_seen_;
@@ -49,17 +52,34 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
       continue;
     separated = !assembly::has_intact_bond(space, id.e, id.f);
   }
+  const auto& prescribed = system.bc().dofs;
   if (separated) {
     std::vector<Index> held = state.held_dofs;
     held.insert(held.end(), detached_.begin(), detached_.end());
-    const auto& prescribed = system.bc().dofs;
     held.insert(held.end(), prescribed.begin(), prescribed.end());
     std::sort(held.begin(), held.end());
     FloatingParts parts = find_floating_parts(*disc_, space, held, applied_force);
     pins_ = std::move(parts.pins);
     parts_ = parts.parts;
   }
-  return {detached_.size() + pins_.size()};
+  // The cells of the failed bonds may keep a motion no intact bond resists
+  // (cell_mechanisms.hpp): looked at with what is about to be held left out.
+  std::vector<Index> cells;
+  for (std::size_t k = first; k < seen_; ++k) {
+    cells.push_back(state.failed_in_order[k].e);
+    cells.push_back(state.failed_in_order[k].f);
+  }
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  std::vector<Index> held(prescribed.begin(), prescribed.end());
+  held.insert(held.end(), detached_.begin(), detached_.end());
+  held.insert(held.end(), pins_.begin(), pins_.end());
+  std::sort(held.begin(), held.end());
+  CellMechanisms mechanisms =
+      find_cell_mechanisms(*disc_, system.A(), system.reference_diagonal(), cells, held, applied_force);
+  cell_pins_ = std::move(mechanisms.pins);
+  mechanisms_ = mechanisms.cells;
+  return {detached_.size() + pins_.size() + cell_pins_.size()};
 }
 
 Effect PartSupport::apply(RunState& state, system::ConstrainedSystem& system) {
@@ -69,6 +89,9 @@ Effect PartSupport::apply(RunState& state, system::ConstrainedSystem& system) {
   system.hold(pins_, false);
   state.held_dofs.insert(state.held_dofs.end(), pins_.begin(), pins_.end());
   state.floating_parts += static_cast<std::size_t>(parts_);
+  system.hold(cell_pins_, false);
+  state.held_dofs.insert(state.held_dofs.end(), cell_pins_.begin(), cell_pins_.end());
+  state.cell_mechanisms += mechanisms_;
   return Effect::hold;
 }
 
@@ -98,8 +121,21 @@ void PartSupport::rebind(const setup::Discretization& disc, RunState& state,
   const FloatingParts parts =
       find_floating_parts(disc, disc.nonlocal_space(&state.failed), held, system.applied_force());
   system.hold(parts.pins, false);
+  std::vector<Index> cells;
+  for (const auto& id : state.failed_in_order) {
+    cells.push_back(id.e);
+    cells.push_back(id.f);
+  }
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  held.insert(held.end(), parts.pins.begin(), parts.pins.end());
+  std::sort(held.begin(), held.end());
+  const CellMechanisms mechanisms = find_cell_mechanisms(disc, system.A(), system.reference_diagonal(), cells,
+                                                         held, system.applied_force());
+  system.hold(mechanisms.pins, false);
   state.held_dofs = detached;
   state.held_dofs.insert(state.held_dofs.end(), parts.pins.begin(), parts.pins.end());
+  state.held_dofs.insert(state.held_dofs.end(), mechanisms.pins.begin(), mechanisms.pins.end());
 }
 
 }  // namespace perimorph::evolution

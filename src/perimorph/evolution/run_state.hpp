@@ -58,6 +58,7 @@ struct RunState {
   std::vector<Index> held_dofs;                ///< dofs held by springs: detached dofs, pins of parts
   std::size_t detached_dofs = 0;               ///< free dofs left with no stiffness, cumulative
   std::size_t floating_parts = 0;              ///< parts cut free and held, cumulative
+  std::size_t cell_mechanisms = 0;  ///< cells with a free motion held (cell_mechanisms.hpp), cumulative
   /// The damage d at every local quadrature point (cell-major, THEORY §6);
   /// empty without [material.damage].
   std::vector<double> history;

@@ -213,6 +213,14 @@ std::vector<double> Matrix::diagonal_at(std::span<const Index> rows) const {
   return out;
 }
 
+Eigen::MatrixXd Matrix::block(std::span<const Index> dofs) const {
+  release_view();
+  const auto n = static_cast<PetscInt>(dofs.size());
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> out(n, n);
+  if (n > 0) PM_PETSC(MatGetValues(m_, n, dofs.data(), n, dofs.data(), out.data()));
+  return out;
+}
+
 Index Matrix::rows() const {
   release_view();
   PetscInt m = 0, n = 0;

@@ -52,6 +52,9 @@ class Matrix final : public assembly::MatrixInserter {
   std::vector<double> diagonal() const;
   /// The diagonal entries at the given rows (MatGetValues; a finalized matrix).
   std::vector<double> diagonal_at(std::span<const Index> rows) const;
+  /// The dense principal block A[dofs, dofs] (MatGetValues; a finalized
+  /// matrix; entries outside the pattern are 0).
+  Eigen::MatrixXd block(std::span<const Index> dofs) const;
   Index rows() const;
   /// Number of stored non-zeros (allocated = used after finalize).
   double nonzeros() const;

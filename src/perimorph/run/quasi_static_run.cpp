@@ -111,8 +111,9 @@ void QuasiStaticRun::solve() {
     throw SolverError(fmt::format(
         "increment {}/{} (load factor {}): {}{}\n{}", state_.increment, increments(), lambda, e.what(),
         failed > 0 ? fmt::format(". {} bonds have failed: they can leave a mechanism, e.g. a part held only "
-                                 "by bonds normal to its motion (parts cut free completely are held "
-                                 "automatically, CSV column floating_parts)",
+                                 "by bonds normal to its motion (parts cut free completely and motions "
+                                 "inside one cell are held automatically, CSV columns floating_parts "
+                                 "and cell_mechanisms)",
                                  failed)
                    : "",
         kept()));
@@ -273,6 +274,7 @@ void QuasiStaticRun::record(bool force_vtu) {
     rec_.crack_area = crack.projected;
     rec_.broken_face_area = crack.total;
     rec_.floating_parts = state_.floating_parts;
+    rec_.cell_mechanisms = state_.cell_mechanisms;
   }
   if (adaptivity_) {
     const auto& nl = *disc_->nonlocal;

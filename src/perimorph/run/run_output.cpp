@@ -59,9 +59,9 @@ RunOutput::RunOutput(const setup::Discretization& model, std::string directory, 
        {"strain_energy", "external_work", "solver_iterations", "relative_residual", "wall_time"})
     columns.emplace_back(c);
   if (fracture_)
-    for (const char* c :
-         {"dissipated_energy", "dissipated_increment", "overshoot_energy", "released_energy", "bonds_broken",
-          "bonds_broken_increment", "break_iterations", "crack_area", "broken_face_area", "floating_parts"})
+    for (const char* c : {"dissipated_energy", "dissipated_increment", "overshoot_energy", "released_energy",
+                          "bonds_broken", "bonds_broken_increment", "break_iterations", "crack_area",
+                          "broken_face_area", "floating_parts", "cell_mechanisms"})
       columns.emplace_back(c);
   if (damage_) {
     if (!fracture_) columns.insert(columns.end(), {"overshoot_energy", "released_energy"});
@@ -203,7 +203,7 @@ void RunOutput::add_row(const IncrementRecord& r) {
     row.insert(row.end(), {r.dissipated, r.dissipated_increment, r.overshoot, r.released,
                            static_cast<double>(r.bonds_broken), static_cast<double>(r.bonds_broken_increment),
                            static_cast<double>(r.break_iterations), r.crack_area, r.broken_face_area,
-                           static_cast<double>(r.floating_parts)});
+                           static_cast<double>(r.floating_parts), static_cast<double>(r.cell_mechanisms)});
   if (damage_) {
     if (!fracture_) row.insert(row.end(), {r.overshoot, r.released});
     row.insert(row.end(), {r.damage_dissipated, static_cast<double>(r.damage_iterations),

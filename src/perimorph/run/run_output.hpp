@@ -33,10 +33,11 @@ struct IncrementRecord {
   double released = 0.0;         ///< W − U − D − overshoot: released by re-equilibration after failures
   std::size_t bonds_broken = 0;  ///< failed bonds, cumulative (pre-crack cuts not counted)
   std::size_t bonds_broken_increment = 0;
-  int break_iterations = 0;        ///< solves after the first one in this increment
-  double crack_area = 0.0;         ///< evolution::BondFailure::crack_area().projected
-  double broken_face_area = 0.0;   ///< evolution::BondFailure::crack_area().total
-  std::size_t floating_parts = 0;  ///< parts cut free and held by a minimal support, cumulative
+  int break_iterations = 0;         ///< solves after the first one in this increment
+  double crack_area = 0.0;          ///< evolution::BondFailure::crack_area().projected
+  double broken_face_area = 0.0;    ///< evolution::BondFailure::crack_area().total
+  std::size_t floating_parts = 0;   ///< parts cut free and held by a minimal support, cumulative
+  std::size_t cell_mechanisms = 0;  ///< cells with a motion no intact bond resists, held, cumulative
   // Adaptive runs only ([adaptivity], THEORY §5):
   Index dofs = 0;                ///< of the model the increment ended on
   Index dg_cells = 0;            ///< cells with private (DG) nodes

@@ -1,0 +1,159 @@
+// Motions inside one cell that no intact bond resists (cell_mechanisms.hpp):
+// every bond of one non-local point of a DG cell fails, the part stays
+// connected, yet A turns singular (the Q1 motion that vanishes at the cell's
+// other points). The support of parts cut free finds it, holds it by as many
+// dofs as it has modes (2 in 2D), A is non-singular again, and the held dofs
+// carry no force. A force that does work on such a motion is an error.
+
+#include "perimorph/evolution/cell_mechanisms.hpp"
+#include "perimorph/assembly/bond_stretch.hpp"
+#include "perimorph/core/error.hpp"
+#include "perimorph/dofs/dof_map.hpp"
+#include "perimorph/evolution/bond_failure.hpp"
+#include "perimorph/evolution/part_support.hpp"
+#include "perimorph/setup/boundary_conditions.hpp"
+#include "perimorph/setup/discretization.hpp"
+#include "perimorph/system/stiffness.hpp"
+#include "support/cases.hpp"
+
+#include <gtest/gtest.h>
+#include <Eigen/Dense>
+
+namespace perimorph {
+namespace {
+
+using testing::fixed;
+
+/// Plate [0, 4] × [0, 2], fully non-local (DG, 2 × 2 points per cell), u_x = 0
+/// on x = 0, u_y = 0 at the origin; the right edge pulled to u_x = 0.004, or
+/// (traction) loaded by a traction along x.
+casefile::CaseConfig plate(bool traction) {
+  auto c = testing::box_case(2, {16, 8, 1}, Vec3(4.0, 2.0, 1.0), 1.0, 0.25);
+  testing::add_nonlocal(c, casefile::KernelKind::gaussian, 0.375, 0.125, 2,
+                        casefile::Discretization::discontinuous);
+  c.alpha.value = 1.0;
+  c.materials[0].nu = std::numeric_limits<double>::quiet_NaN();
+  casefile::NodeSetSpec origin;
+  origin.name = "origin";
+  c.node_sets = {origin};
+  c.dirichlet = {fixed("xmin", 0), fixed("origin", 1)};
+  if (traction) {
+    casefile::TractionSpec t;
+    t.set = "xmax";
+    t.value = Vec3(1e-3, 0.0, 0.0);
+    c.tractions = {t};
+  } else {
+    c.dirichlet.push_back(fixed("xmax", 0, 0.004));
+  }
+  c.fracture.enabled = true;
+  c.fracture.s_crit = 1e-6;
+  return c;
+}
+
+/// The cell whose centroid is nearest `x`.
+Index cell_at(const setup::Discretization& model, const Vec3& x) {
+  Index best = 0;
+  for (Index c = 1; c < model.mesh.num_cells(); ++c)
+    if ((model.mesh.cell_centroid(c) - x).norm() < (model.mesh.cell_centroid(best) - x).norm()) best = c;
+  return best;
+}
+
+/// Fails every bond of point q of cell c (an expansion u = 1e-3 (x, y)
+/// stretches them all) and runs the support of parts cut free, as the run loop does.
+/// Returns the bonds failed.
+std::size_t kill_point(const setup::Discretization& model, Index c, int q, evolution::RunState& state,
+                       system::ConstrainedSystem& sys, bool support) {
+  const auto& dm = model.dofmap;
+  std::vector<double> u(static_cast<std::size_t>(dm.num_dofs()), 0.0);
+  for (Index a = 0; a < dm.num_nodes(); ++a)
+    for (int d = 0; d < 2; ++d) u[static_cast<std::size_t>(a * 2 + d)] = 1e-3 * dm.node_coordinate(a)[d];
+  evolution::BondFailure failure(model);
+  std::vector<assembly::StretchedBond> bonds = assembly::bonds_over(failure.space(state), u, 0.0);
+  std::erase_if(bonds, [&](const assembly::StretchedBond& b) {
+    return !((b.id.e == c && b.id.g == q) || (b.id.f == c && b.id.h == q));
+  });
+  state.u = u;
+  failure.apply(bonds, state, sys);
+  if (support) {
+    evolution::PartSupport parts(model);
+    if (!parts.inspect(state, sys).quiet()) parts.apply(state, sys);
+  }
+  return bonds.size();
+}
+
+system::ConstrainedSystem constrained_system(const setup::Discretization& model) {
+  return system::ConstrainedSystem(model, system::assemble_stiffness(model).K, setup::build_dirichlet(model),
+                                   setup::build_external_force(model));
+}
+
+double eigenvalue_ratio(const Eigen::MatrixXd& A) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A, Eigen::EigenvaluesOnly);
+  return eig.eigenvalues().minCoeff() / eig.eigenvalues().maxCoeff();
+}
+
+TEST(CellMechanisms, DeadPointLeavesASingularMatrix) {
+  const auto model = setup::build_discretization(plate(false));
+  evolution::RunState state(model);
+  system::ConstrainedSystem sys = constrained_system(model);
+  const double before = eigenvalue_ratio(sys.A().to_dense());
+  EXPECT_GT(kill_point(model, cell_at(model, Vec3(2.1, 1.1, 0.0)), 3, state, sys, false), 20u);
+  const double after = eigenvalue_ratio(sys.A().to_dense());
+  std::printf("eigenvalue ratio of A: %.3e intact, %.3e with one point's bonds failed\n", before, after);
+  EXPECT_GT(before, 1e-8);
+  EXPECT_LT(std::abs(after), 1e-14);
+}
+
+TEST(CellMechanisms, DeadPointIsHeldWithoutForce) {
+  const auto model = setup::build_discretization(plate(false));
+  evolution::RunState state(model);
+  system::ConstrainedSystem sys = constrained_system(model);
+  kill_point(model, cell_at(model, Vec3(2.1, 1.1, 0.0)), 3, state, sys, true);
+  EXPECT_EQ(state.cell_mechanisms, 1u);
+  EXPECT_EQ(state.floating_parts, 0u);
+  EXPECT_EQ(state.held_dofs.size(), 2u);  // the 2 modes of one point in 2D
+  const Eigen::MatrixXd A = sys.A().to_dense();
+  const double ratio = eigenvalue_ratio(A);
+  std::printf("eigenvalue ratio of A with the cell's motion held: %.3e\n", ratio);
+  EXPECT_GT(ratio, 1e-12);
+  // The held dofs carry no force: K u = F there (no applied force: 0),
+  // against the reactions at the pulled edge.
+  const std::vector<double> rhs = sys.rhs_unit().to_std();
+  const Eigen::VectorXd u = A.ldlt().solve(Eigen::Map<const Eigen::VectorXd>(rhs.data(), A.rows()));
+  const Eigen::VectorXd f = sys.K().to_dense() * u;
+  double reaction = 0.0;
+  for (Index d : sys.bc().dofs) reaction = std::max(reaction, std::abs(f[d]));
+  for (Index d : state.held_dofs) {
+    std::printf("force on held dof %lld: %.3e (largest reaction %.3e)\n", static_cast<long long>(d), f[d],
+                reaction);
+    EXPECT_LT(std::abs(f[d]), 1e-10 * reaction);
+  }
+  // The free dofs are in equilibrium too.
+  double residual = 0.0;
+  for (Index d = 0; d < A.rows(); ++d)
+    if (!sys.prescribed(d)) residual = std::max(residual, std::abs(f[d]));
+  EXPECT_LT(residual, 1e-10 * reaction);
+}
+
+TEST(CellMechanisms, ForceDoingWorkOnTheMotionIsAnError) {
+  const auto model = setup::build_discretization(plate(true));
+  evolution::RunState state(model);
+  system::ConstrainedSystem sys = constrained_system(model);
+  // The last column of cells: the traction acts on the nodes of its right edge.
+  const Index c = cell_at(model, Vec3(3.9, 1.1, 0.0));
+  int q_right = 0;  // the point nearest the loaded edge
+  const auto& pts = model.nonlocal->points;
+  for (int q = 1; q < pts.per_cell; ++q)
+    if (pts.x[pts.index(c, q)].x() > pts.x[pts.index(c, q_right)].x()) q_right = q;
+  try {
+    kill_point(model, c, q_right, state, sys, true);
+    FAIL() << "a motion that the traction does work on was held";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    std::printf("%s\n", what.c_str());
+    EXPECT_NE(what.find("no intact bond resists"), std::string::npos) << what;
+    EXPECT_NE(what.find("no quasi-static equilibrium"), std::string::npos) << what;
+  }
+}
+
+}  // namespace
+}  // namespace perimorph
