@@ -26,9 +26,11 @@ LinearSolver::~LinearSolver() {
   if (ksp_) KSPDestroy(&ksp_);
 }
 
-void LinearSolver::set_operator(Matrix& A, std::span<const Vec3> node_coordinates, int dim) {
-  A_ = &A;
-  // Rigid-body modes from the dof-node coordinates (block size = dim).
+namespace {
+
+/// Rigid-body modes from the dof-node coordinates (block size = dim), as the
+/// near-null space of M (GAMG's coarse spaces).
+void attach_rigid_body_modes(PetscMatHandle M, std::span<const Vec3> node_coordinates, int dim) {
   Vec coords = nullptr;
   PM_PETSC(VecCreate(PETSC_COMM_WORLD, &coords));
   PM_PETSC(VecSetSizes(coords, static_cast<PetscInt>(node_coordinates.size()) * dim, PETSC_DECIDE));
@@ -42,14 +44,28 @@ void LinearSolver::set_operator(Matrix& A, std::span<const Vec3> node_coordinate
   PM_PETSC(VecRestoreArray(coords, &c));
   MatNullSpace nullsp = nullptr;
   PM_PETSC(MatNullSpaceCreateRigidBody(coords, &nullsp));
-  PM_PETSC(MatSetNearNullSpace(A.handle(), nullsp));
+  PM_PETSC(MatSetNearNullSpace(M, nullsp));
   PM_PETSC(MatNullSpaceDestroy(&nullsp));
   PM_PETSC(VecDestroy(&coords));
+}
+
+}  // namespace
+
+void LinearSolver::set_operator(Matrix& A, std::span<const Vec3> node_coordinates, int dim) {
+  mult_ = [&A](const Vector& x, Vector& y) { A.mult(x, y); };
+  attach_rigid_body_modes(A.handle(), node_coordinates, dim);
   PM_PETSC(KSPSetOperators(ksp_, A.handle(), A.handle()));
 }
 
+void LinearSolver::set_operators(const ShellMatrix& A, Matrix& P, std::span<const Vec3> node_coordinates,
+                                 int dim) {
+  mult_ = [&A](const Vector& x, Vector& y) { A.mult(x, y); };
+  attach_rigid_body_modes(P.handle(), node_coordinates, dim);
+  PM_PETSC(KSPSetOperators(ksp_, A.handle(), P.handle()));
+}
+
 SolveReport LinearSolver::solve(const Vector& b, Vector& x) {
-  PERIMORPH_ASSERT(A_ != nullptr, "set_operator must be called before solve");
+  PERIMORPH_ASSERT(static_cast<bool>(mult_), "set_operator must be called before solve");
   PetscBool reuse = PETSC_FALSE;
   PM_PETSC(KSPGetReusePreconditioner(ksp_, &reuse));
   // A reused preconditioner was built for an earlier operator (before bonds failed or alpha
@@ -105,7 +121,7 @@ SolveReport LinearSolver::solve(const Vector& b, Vector& x) {
   report.pc_type = ptype ? ptype : "";
 
   Vector r(b.size(), 1);
-  A_->mult(x, r);
+  mult_(x, r);
   r.axpy(-1.0, b);
   const double bnorm = b.norm2();
   report.relative_residual = bnorm > 0 ? r.norm2() / bnorm : r.norm2();

@@ -6,8 +6,10 @@
 
 #include "perimorph/core/types.hpp"
 #include "perimorph/la/matrix.hpp"
+#include "perimorph/la/shell_matrix.hpp"
 #include "perimorph/la/vector.hpp"
 
+#include <functional>
 #include <span>
 #include <string>
 
@@ -33,6 +35,10 @@ class LinearSolver {
   /// Sets the operator (and preconditioner matrix). Call again after the
   /// matrix values change; the near-null space is attached to A.
   void set_operator(Matrix& A, std::span<const Vec3> node_coordinates, int dim);
+  /// A matrix-free operator A, preconditioned from the assembled matrix P
+  /// (KSPSetOperators(A, P): GAMG, Jacobi … are built on P, which carries the
+  /// near-null space). Both are kept alive by the caller.
+  void set_operators(const ShellMatrix& A, Matrix& P, std::span<const Vec3> node_coordinates, int dim);
   /// Solves A x = b starting from x. With -ksp_reuse_preconditioner, the
   /// preconditioner is rebuilt for the present matrix before a solve when the
   /// last one needed more than 2 n + 10 iterations, n those of the first
@@ -47,9 +53,10 @@ class LinearSolver {
 
  private:
   PetscKspHandle ksp_ = nullptr;
-  const Matrix* A_ = nullptr;
+  /// y ← A x for the true residual (the operator of set_operator(s), kept alive by the caller).
+  std::function<void(const Vector&, Vector&)> mult_;
   int baseline_iterations_ = -1;  ///< iterations of the first solve after the last build (reuse)
-  bool rebuild_next_ = false;     ///< non-owning: the operator of set_operator, kept alive by the caller
+  bool rebuild_next_ = false;
 };
 
 }  // namespace perimorph::la

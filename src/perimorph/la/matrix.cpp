@@ -213,6 +213,57 @@ std::vector<double> Matrix::diagonal_at(std::span<const Index> rows) const {
   return out;
 }
 
+Matrix Matrix::without_zero_blocks() const {
+  release_view();
+  PetscInt bs = 1;
+  PM_PETSC(MatGetBlockSize(m_, &bs));
+  const Index n = rows();
+  const Index nb = n / bs;
+  // Block columns with a non-zero entry, per block row.
+  assembly::SparsityPattern pattern;
+  pattern.block_size = static_cast<int>(bs);
+  pattern.row_offsets.assign(1, 0);
+  std::vector<Index> cols;
+  for (Index br = 0; br < nb; ++br) {
+    cols.clear();
+    for (Index k = 0; k < bs; ++k) {
+      PetscInt ncols = 0;
+      const PetscInt* c = nullptr;
+      const PetscScalar* v = nullptr;
+      PM_PETSC(MatGetRow(m_, br * bs + k, &ncols, &c, &v));
+      for (PetscInt j = 0; j < ncols; ++j)
+        if (v[j] != 0.0 || c[j] / bs == br) cols.push_back(c[j] / bs);
+      PM_PETSC(MatRestoreRow(m_, br * bs + k, &ncols, &c, &v));
+    }
+    std::sort(cols.begin(), cols.end());
+    cols.erase(std::unique(cols.begin(), cols.end()), cols.end());
+    pattern.columns.insert(pattern.columns.end(), cols.begin(), cols.end());
+    pattern.row_offsets.push_back(static_cast<Index>(pattern.columns.size()));
+  }
+  Matrix out(pattern);
+  std::vector<Index> kept;
+  std::vector<double> values;
+  for (Index r = 0; r < n; ++r) {
+    PetscInt ncols = 0;
+    const PetscInt* c = nullptr;
+    const PetscScalar* v = nullptr;
+    PM_PETSC(MatGetRow(m_, r, &ncols, &c, &v));
+    kept.clear();
+    values.clear();
+    const auto row_blocks = pattern.row(r / bs);
+    for (PetscInt j = 0; j < ncols; ++j)
+      if (std::binary_search(row_blocks.begin(), row_blocks.end(), c[j] / bs)) {
+        kept.push_back(c[j]);
+        values.push_back(v[j]);
+      }
+    PM_PETSC(MatRestoreRow(m_, r, &ncols, &c, &v));
+    const Index row[1] = {r};
+    for (std::size_t j = 0; j < kept.size(); ++j) out.add(row, {&kept[j], 1}, {&values[j], 1});
+  }
+  out.finalize();
+  return out;
+}
+
 Eigen::MatrixXd Matrix::block(std::span<const Index> dofs) const {
   release_view();
   const auto n = static_cast<PetscInt>(dofs.size());

@@ -1,0 +1,185 @@
+#include "perimorph/assembly/structured_nonlocal_operator.hpp"
+
+#include "perimorph/bonds/nonlocal_points.hpp"
+#include "perimorph/core/error.hpp"
+#include "perimorph/dofs/dof_map.hpp"
+#include "perimorph/mesh/mesh.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace perimorph::assembly {
+
+namespace {
+
+/// Collects the entries of the rows of one cell's dofs.
+class RowCapture final : public MatrixInserter {
+ public:
+  RowCapture(Index first, int count) : first_(first), count_(count) {}
+  void add(std::span<const Index> rows, std::span<const Index> cols,
+           std::span<const double> values) override {
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      if (rows[i] < first_ || rows[i] >= first_ + count_) continue;
+      for (std::size_t j = 0; j < cols.size(); ++j)
+        if (cols[j] >= 0) entries[{rows[i], cols[j]}] += values[i * cols.size() + j];
+    }
+  }
+  std::map<std::pair<Index, Index>, double> entries;
+
+ private:
+  Index first_;
+  int count_;
+};
+
+}  // namespace
+
+OffsetBlocks offset_blocks(const NonlocalSpace& space, Index centre) {
+  const auto& mesh = space.mesh;
+  const int dim = mesh.dim();
+  if (!mesh.structure || space.points.per_cell != 1 || space.dofmap.cell_nodes(centre).size() != 1)
+    throw Error(
+        "the matrix-free non-local operator needs a structured box mesh with one non-local point "
+        "per cell (discretization = \"discontinuous-constant\")");
+  const auto& layout = *mesh.structure;
+  const Index node = space.dofmap.cell_nodes(centre)[0];
+  RowCapture capture(node * dim, dim);
+  NonlocalOptions options;
+  options.include_pair = [centre](Index e, Index f) { return e == centre || f == centre; };
+  assemble_nonlocal(space, capture, options);
+  // Column node → offset from the centre.
+  std::map<Index, Index> cell_of_node;
+  for (Index c = 0; c < mesh.num_cells(); ++c) cell_of_node[space.dofmap.cell_nodes(c)[0]] = c;
+  const auto ijk0 = layout.cell_ijk(centre);
+  const int r = static_cast<int>(std::ceil(space.kernel.horizon / layout.spacing.minCoeff()));
+  for (int d = 0; d < dim; ++d)
+    if (ijk0[static_cast<std::size_t>(d)] < r ||
+        ijk0[static_cast<std::size_t>(d)] + r >= layout.cells[static_cast<std::size_t>(d)])
+      throw Error(
+          fmt::format("offset_blocks: cell {} is closer than the horizon to a face of the grid", centre));
+  std::map<std::array<int, 3>, std::vector<double>> by_offset;
+  for (const auto& [rc, v] : capture.entries) {
+    const Index col_node = rc.second / dim;
+    if (col_node == node) continue;
+    const auto ijk = layout.cell_ijk(cell_of_node.at(col_node));
+    std::array<int, 3> o{};
+    for (int d = 0; d < 3; ++d)
+      o[static_cast<std::size_t>(d)] =
+          static_cast<int>(ijk[static_cast<std::size_t>(d)] - ijk0[static_cast<std::size_t>(d)]);
+    auto& b = by_offset[o];
+    b.resize(static_cast<std::size_t>(dim * dim), 0.0);
+    b[static_cast<std::size_t>((rc.first - node * dim) * dim + rc.second % dim)] = -v;
+  }
+  OffsetBlocks out;
+  out.dim = dim;
+  for (const auto& [o, b] : by_offset) {
+    out.offsets.push_back(o);
+    out.blocks.insert(out.blocks.end(), b.begin(), b.end());
+  }
+  return out;
+}
+
+StructuredNonlocalOperator::StructuredNonlocalOperator(OffsetBlocks blocks, std::array<Index, 3> cells,
+                                                       std::vector<Index> node_of_cell)
+    : b_(std::move(blocks)), n_(cells), node_(std::move(node_of_cell)) {}
+
+void StructuredNonlocalOperator::apply(std::span<const double> x, std::span<double> y) const {
+  const int dim = b_.dim;
+  const Index n0 = n_[0], n1 = n_[1], n2 = n_[2];
+  const Index total = n0 * n1 * n2;
+  const std::size_t m = b_.offsets.size();
+  if (m == 0) {
+    std::fill(y.begin(), y.end(), 0.0);
+    return;
+  }
+  const int* off = b_.offsets.front().data();
+  const double* B = b_.blocks.data();
+#pragma omp parallel for schedule(static)
+  for (Index c = 0; c < total; ++c) {
+    const Index i = c % n0, j = (c / n0) % n1, k = c / (n0 * n1);
+    const std::size_t row =
+        static_cast<std::size_t>(node_[static_cast<std::size_t>(c)]) * static_cast<std::size_t>(dim);
+    double acc[3] = {0.0, 0.0, 0.0};
+    double xi[3] = {0.0, 0.0, 0.0};
+    for (int d = 0; d < dim; ++d) xi[d] = x[row + static_cast<std::size_t>(d)];
+    for (std::size_t q = 0; q < m; ++q) {
+      const Index a = i + off[3 * q], b = j + off[3 * q + 1], e = k + off[3 * q + 2];
+      if (a < 0 || a >= n0 || b < 0 || b >= n1 || e < 0 || e >= n2) continue;
+      const std::size_t col =
+          static_cast<std::size_t>(node_[static_cast<std::size_t>(a + n0 * (b + n1 * e))]) *
+          static_cast<std::size_t>(dim);
+      const double* Bq = B + q * static_cast<std::size_t>(dim * dim);
+      double diff[3] = {0.0, 0.0, 0.0};
+      for (int d = 0; d < dim; ++d) diff[d] = xi[d] - x[col + static_cast<std::size_t>(d)];
+      for (int r = 0; r < dim; ++r)
+        for (int s = 0; s < dim; ++s) acc[r] += Bq[r * dim + s] * diff[s];
+    }
+    for (int d = 0; d < dim; ++d) y[row + static_cast<std::size_t>(d)] = acc[d];
+  }
+}
+
+namespace {
+
+/// Calls visit(q, neighbour cell) for every offset q of `offsets` whose
+/// neighbour of cell c lies inside the grid, in offset order.
+template <class Visit>
+void for_each_neighbour(const std::vector<std::array<int, 3>>& offsets, std::array<Index, 3> n, Index c,
+                        Visit&& visit) {
+  const Index i = c % n[0], j = (c / n[0]) % n[1], k = c / (n[0] * n[1]);
+  for (std::size_t q = 0; q < offsets.size(); ++q) {
+    const Index a = i + offsets[q][0], b = j + offsets[q][1], e = k + offsets[q][2];
+    if (a < 0 || a >= n[0] || b < 0 || b >= n[1] || e < 0 || e >= n[2]) continue;
+    visit(q, a + n[0] * (b + n[1] * e));
+  }
+}
+
+}  // namespace
+
+SparsityPattern StructuredNonlocalOperator::sparsity() const {
+  const Index total = n_[0] * n_[1] * n_[2];
+  std::vector<std::vector<Index>> rows(static_cast<std::size_t>(total));
+  for (Index c = 0; c < total; ++c) {
+    auto& r = rows[static_cast<std::size_t>(node_[static_cast<std::size_t>(c)])];
+    r.push_back(node_[static_cast<std::size_t>(c)]);
+    for_each_neighbour(b_.offsets, n_, c,
+                       [&](std::size_t, Index f) { r.push_back(node_[static_cast<std::size_t>(f)]); });
+  }
+  SparsityPattern p;
+  p.block_size = b_.dim;
+  p.row_offsets.assign(1, 0);
+  for (auto& r : rows) {
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+    p.columns.insert(p.columns.end(), r.begin(), r.end());
+    p.row_offsets.push_back(static_cast<Index>(p.columns.size()));
+  }
+  return p;
+}
+
+void StructuredNonlocalOperator::assemble(MatrixInserter& K) const {
+  const int dim = b_.dim;
+  const auto dd = static_cast<std::size_t>(dim * dim);
+  const Index total = n_[0] * n_[1] * n_[2];
+  std::vector<Index> rows(static_cast<std::size_t>(dim)), cols(static_cast<std::size_t>(dim));
+  std::vector<double> diag(dd), off(dd);
+  for (Index c = 0; c < total; ++c) {
+    const Index node = node_[static_cast<std::size_t>(c)];
+    for (int d = 0; d < dim; ++d) rows[static_cast<std::size_t>(d)] = node * dim + d;
+    std::fill(diag.begin(), diag.end(), 0.0);
+    for_each_neighbour(b_.offsets, n_, c, [&](std::size_t q, Index f) {
+      const double* B = b_.blocks.data() + q * dd;
+      for (std::size_t t = 0; t < dd; ++t) {
+        diag[t] += B[t];
+        off[t] = -B[t];
+      }
+      for (int d = 0; d < dim; ++d)
+        cols[static_cast<std::size_t>(d)] = node_[static_cast<std::size_t>(f)] * dim + d;
+      K.add(rows, cols, off);
+    });
+    K.add(rows, rows, diag);
+  }
+}
+
+}  // namespace perimorph::assembly

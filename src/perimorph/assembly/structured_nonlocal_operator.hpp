@@ -1,0 +1,59 @@
+#pragma once
+// The non-local operator of a structured grid applied without a matrix
+// (THEORY §4; issue 16 item 3). On a structured box of cells with one
+// non-local point each (DG degree 0), α ≡ 1, no cut and no failed bond, the
+// bond between cells i and i + o depends only on the offset o: the stiffness
+// is K_ii = Σ_o B_o, K_{i,i+o} = −B_o over the neighbours inside the grid,
+// with one dim × dim block B_o per offset. So
+//     (K x)_i = Σ_o B_o (x_i − x_{i+o}),
+// which needs the blocks (a few kB) instead of the matrix (GBs at 10⁵ cells).
+// The blocks are read from the assembly of a small model with the same
+// spacing, horizon and kernel, so the product equals the assembled one to
+// round-off. Each row is summed in the same offset order by whichever thread
+// owns it: bit-identical for any thread count.
+
+#include "perimorph/assembly/nonlocal_assembly.hpp"
+#include "perimorph/assembly/sparsity.hpp"
+
+#include <array>
+#include <span>
+#include <vector>
+
+namespace perimorph::assembly {
+
+/// Per grid offset o ≠ 0 with a bond: B_o = −K(c, c + o) (dim × dim, row-major).
+struct OffsetBlocks {
+  int dim = 3;
+  std::vector<std::array<int, 3>> offsets;
+  std::vector<double> blocks;  ///< dim² per offset
+};
+
+/// The blocks of the cell `centre` of a structured DG0 space with α ≡ 1
+/// (every offset in the horizon must fit inside the grid around it; throws
+/// Error otherwise, or when the space is not structured DG0).
+OffsetBlocks offset_blocks(const NonlocalSpace& space, Index centre);
+
+class StructuredNonlocalOperator {
+ public:
+  /// `cells`: the grid (n0, n1, n2); `node_of_cell[c]`, c = i + n0 (j + n1 k):
+  /// the dof node of each cell (dofs node · dim + d).
+  StructuredNonlocalOperator(OffsetBlocks blocks, std::array<Index, 3> cells,
+                             std::vector<Index> node_of_cell);
+  /// y ← K x (length: cells · dim). OpenMP over cells.
+  void apply(std::span<const double> x, std::span<double> y) const;
+  std::size_t offsets() const { return b_.offsets.size(); }
+  /// The pattern of K: each cell with itself and its neighbours at the
+  /// offsets (block size dim), exact for the bonds (the cell graph's pattern
+  /// holds every pair of cells within the horizon of each other's boxes).
+  SparsityPattern sparsity() const;
+  /// K += the operator, one block row per cell (for a preconditioner built on
+  /// a short horizon's blocks: la::Matrix needs entries).
+  void assemble(MatrixInserter& K) const;
+
+ private:
+  OffsetBlocks b_;
+  std::array<Index, 3> n_;
+  std::vector<Index> node_;
+};
+
+}  // namespace perimorph::assembly

@@ -1,0 +1,44 @@
+#pragma once
+// A matrix-free operator inside PETSc (MATSHELL, RAII, move-only): y = A x by
+// a callback on plain arrays, so that a Krylov solver (LinearSolver) can use
+// an operator that is never assembled, preconditioned by an assembled matrix
+// (LinearSolver::set_operators). Only the product is provided; PETSc
+// preconditioners that need entries (GAMG, Jacobi) take them from the
+// preconditioning matrix.
+
+#include "perimorph/core/types.hpp"
+#include "perimorph/la/petsc_fwd.hpp"
+#include "perimorph/la/vector.hpp"
+
+#include <functional>
+#include <memory>
+#include <span>
+
+namespace perimorph::la {
+
+class ShellMatrix {
+ public:
+  /// y ← A x, both of length `size` (y is overwritten). Called by PETSc from
+  /// one thread; the callback may use OpenMP inside.
+  using Apply = std::function<void(std::span<const double> x, std::span<double> y)>;
+
+  ShellMatrix(Index size, int block_size, Apply apply);
+  ~ShellMatrix();
+  ShellMatrix(ShellMatrix&& other) noexcept;
+  ShellMatrix& operator=(ShellMatrix&& other) noexcept;
+  ShellMatrix(const ShellMatrix&) = delete;
+  ShellMatrix& operator=(const ShellMatrix&) = delete;
+
+  /// y ← A x
+  void mult(const Vector& x, Vector& y) const;
+  Index rows() const { return size_; }
+  /// The PETSc matrix (la/ only).
+  PetscMatHandle handle() const { return m_; }
+
+ private:
+  PetscMatHandle m_ = nullptr;
+  Index size_ = 0;
+  std::unique_ptr<Apply> apply_;  ///< the shell's context: a stable address
+};
+
+}  // namespace perimorph::la
