@@ -131,6 +131,11 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
     if (summary.preconditioner_rebuilds > 0)
       fmt::print("{} solves rebuilt the reused preconditioner (it failed, or the iterations had grown)\n",
                  summary.preconditioner_rebuilds);
+    if (summary.direct_fallback_solves > 0)
+      fmt::print(
+          "{} solves were made by the direct fallback after Krylov failed on a matrix that bond failures "
+          "left singular (MUMPS, up to {} null pivots held)\n",
+          summary.direct_fallback_solves, summary.most_null_pivots);
     fmt::print("strain energy {:.6e}, external work {:.6e}\n", summary.strain_energy, summary.external_work);
     for (std::size_t k = 0; k < summary.reactions.size(); ++k)
       fmt::print("reaction on '{}': ({:.6e}, {:.6e}, {:.6e})\n", summary.reaction_names[k],

@@ -3,7 +3,10 @@
 // rebuilt and the solve retried (reported); one under which the iterations
 // grew beyond 2 n + 10 is rebuilt before the next solve; without reuse
 // nothing is retried; a solve that fails also with the rebuilt
-// preconditioner throws and says so.
+// preconditioner throws and says so. The direct fallback (allowed after bond
+// failures) solves a singular, consistent system by holding its null pivot,
+// and every later solve is direct; with an inconsistent right-hand side (a
+// load that does work on the mechanism) it throws; not allowed, it is not used.
 
 #include "perimorph/la/linear_solver.hpp"
 #include "perimorph/assembly/sparsity.hpp"
@@ -157,6 +160,63 @@ TEST_F(LaLinearSolverReuse, FailureWithTheRebuiltPreconditionerThrowsAndSaysSo) 
     FAIL() << "expected a SolverError";
   } catch (const SolverError& e) {
     EXPECT_NE(std::string(e.what()).find("rebuilt"), std::string::npos) << e.what();
+  }
+}
+
+/// [[2, −1], [−1, 2]] ⊕ [[1, −1], [−1, 1]]: the second block is singular,
+/// (1, 1) its null vector (a mechanism).
+la::Matrix singular_matrix() {
+  assembly::SparsityPattern p;
+  p.block_size = 1;
+  p.row_offsets = {0, 2, 4, 6, 8};
+  p.columns = {0, 1, 0, 1, 2, 3, 2, 3};
+  la::Matrix A(p);
+  const std::array<Index, 2> first{0, 1}, second{2, 3};
+  const std::array<double, 4> spd{2, -1, -1, 2}, mechanism{1, -1, -1, 1};
+  A.add(first, first, spd);
+  A.add(second, second, mechanism);
+  A.finalize();
+  A.set_spd();
+  return A;
+}
+
+TEST_F(LaLinearSolverReuse, DirectFallbackHoldsTheNullPivotOfAConsistentSystem) {
+  // CG with one iteration fails (DIVERGED_ITS); the direct solve holds the null pivot.
+  la::LinearSolver solver(1e-10, 1);
+  la::Matrix A = singular_matrix();
+  solver.set_operator(A, nodes, 1);
+  la::Vector b(n, 1), x(n, 1);
+  b.assign(std::vector<double>{1.0, 0.0, 1.0, -1.0});  // balanced on the mechanism
+  EXPECT_THROW(solver.solve(b, x), SolverError);       // not allowed
+  solver.allow_direct_fallback(true);
+  x.set_all(0.0);
+  const la::SolveReport rep = solver.solve(b, x);
+  EXPECT_TRUE(rep.direct_fallback);
+  EXPECT_EQ(rep.null_pivots, 1);
+  EXPECT_LT(rep.relative_residual, 1e-12);
+  EXPECT_TRUE(solver.direct());
+  const std::vector<double> u = x.to_std();
+  EXPECT_NEAR(u[0], 2.0 / 3.0, 1e-12);
+  EXPECT_NEAR(u[1], 1.0 / 3.0, 1e-12);
+  EXPECT_NEAR(u[2] - u[3], 1.0, 1e-12);  // the mechanism's stretch; its rigid motion held
+  // Every later solve is direct.
+  x.set_all(0.0);
+  EXPECT_TRUE(solver.solve(b, x).direct_fallback);
+}
+
+TEST_F(LaLinearSolverReuse, DirectFallbackRefusesALoadThatDoesWorkOnTheMechanism) {
+  la::LinearSolver solver(1e-10, 1);
+  la::Matrix A = singular_matrix();
+  solver.set_operator(A, nodes, 1);
+  solver.allow_direct_fallback(true);
+  la::Vector b(n, 1), x(n, 1);
+  b.assign(std::vector<double>{1.0, 0.0, 1.0, 1.0});  // (1, 1) · (1, 1) ≠ 0
+  try {
+    solver.solve(b, x);
+    FAIL() << "expected a SolverError";
+  } catch (const SolverError& e) {
+    std::printf("%s\n", e.what());
+    EXPECT_NE(std::string(e.what()).find("no quasi-static equilibrium"), std::string::npos) << e.what();
   }
 }
 

@@ -4,11 +4,12 @@
 
 #include <petscksp.h>
 
+#include <algorithm>
 #include <optional>
 
 namespace perimorph::la {
 
-LinearSolver::LinearSolver(double rtol, int max_iterations) {
+LinearSolver::LinearSolver(double rtol, int max_iterations) : rtol_(rtol) {
   PM_PETSC(KSPCreate(PETSC_COMM_WORLD, &ksp_));
   PM_PETSC(KSPSetType(ksp_, KSPCG));
   PC pc = nullptr;
@@ -24,6 +25,44 @@ LinearSolver::LinearSolver(double rtol, int max_iterations) {
 
 LinearSolver::~LinearSolver() {
   if (ksp_) KSPDestroy(&ksp_);
+  if (direct_) KSPDestroy(&direct_);
+}
+
+void LinearSolver::solve_direct(const Vector& b, Vector& x, SolveReport& report) {
+  if (!direct_) {
+    PM_PETSC(KSPCreate(PETSC_COMM_WORLD, &direct_));
+    PM_PETSC(KSPSetOptionsPrefix(direct_, "fallback_"));
+    PM_PETSC(KSPSetType(direct_, KSPPREONLY));
+    PC pc = nullptr;
+    PM_PETSC(KSPGetPC(direct_, &pc));
+    // LU: MUMPS detects null pivots in its unsymmetric factorization (with
+    // the SPD flag set, PETSc's Cholesky asks MUMPS for an SPD one, which
+    // does not).
+    PM_PETSC(PCSetType(pc, PCLU));
+    PM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+    PM_PETSC(KSPSetOperators(direct_, op_, op_));
+    PM_PETSC(KSPSetFromOptions(direct_));
+    PM_PETSC(PCFactorSetUpMatSolverType(pc));
+    Mat F = nullptr;
+    PM_PETSC(PCFactorGetMatrix(pc, &F));
+    PM_PETSC(MatMumpsSetIcntl(F, 24, 1));    // null pivot detection
+    PM_PETSC(MatMumpsSetCntl(F, 3, 1e-10));  // relative to the matrix norm
+  }
+  PM_PETSC(KSPSolve(direct_, b.read_handle(), x.handle()));
+  KSPConvergedReason reason;
+  PM_PETSC(KSPGetConvergedReason(direct_, &reason));
+  report.reason = KSPConvergedReasons[reason];
+  report.iterations = 0;
+  report.direct_fallback = true;
+  PC pc = nullptr;
+  PM_PETSC(KSPGetPC(direct_, &pc));
+  Mat F = nullptr;
+  PM_PETSC(PCFactorGetMatrix(pc, &F));
+  PetscInt nulls = 0;
+  PM_PETSC(MatMumpsGetInfog(F, 28, &nulls));
+  report.null_pivots = static_cast<int>(nulls);
+  report.ksp_type = "preonly";
+  report.pc_type = "lu (MUMPS, null pivots held)";
 }
 
 namespace {
@@ -53,6 +92,8 @@ void attach_rigid_body_modes(PetscMatHandle M, std::span<const Vec3> node_coordi
 
 void LinearSolver::set_operator(Matrix& A, std::span<const Vec3> node_coordinates, int dim) {
   mult_ = [&A](const Vector& x, Vector& y) { A.mult(x, y); };
+  op_ = A.handle();
+  if (direct_) PM_PETSC(KSPSetOperators(direct_, op_, op_));
   attach_rigid_body_modes(A.handle(), node_coordinates, dim);
   PM_PETSC(KSPSetOperators(ksp_, A.handle(), A.handle()));
 }
@@ -60,12 +101,32 @@ void LinearSolver::set_operator(Matrix& A, std::span<const Vec3> node_coordinate
 void LinearSolver::set_operators(const ShellMatrix& A, Matrix& P, std::span<const Vec3> node_coordinates,
                                  int dim) {
   mult_ = [&A](const Vector& x, Vector& y) { A.mult(x, y); };
+  op_ = nullptr;  // no entries: no direct fallback
   attach_rigid_body_modes(P.handle(), node_coordinates, dim);
   PM_PETSC(KSPSetOperators(ksp_, A.handle(), P.handle()));
 }
 
 SolveReport LinearSolver::solve(const Vector& b, Vector& x) {
   PERIMORPH_ASSERT(static_cast<bool>(mult_), "set_operator must be called before solve");
+  auto true_residual = [&](SolveReport& rep) {
+    Vector r(b.size(), 1);
+    mult_(x, r);
+    r.axpy(-1.0, b);
+    const double bnorm = b.norm2();
+    rep.relative_residual = bnorm > 0 ? r.norm2() / bnorm : r.norm2();
+  };
+  const double fallback_tolerance = std::max(10.0 * rtol_, 1e-9);
+  if (use_direct_ && op_) {
+    SolveReport report;
+    solve_direct(b, x, report);
+    true_residual(report);
+    if (report.relative_residual > fallback_tolerance || !x.all_finite())
+      throw SolverError(fmt::format(
+          "the direct solve (MUMPS, {} null pivots held) left a relative residual {:.3e}: the loads do work "
+          "on a mechanism that bond failures have left, and there is no quasi-static equilibrium",
+          report.null_pivots, report.relative_residual));
+    return report;
+  }
   PetscBool reuse = PETSC_FALSE;
   PM_PETSC(KSPGetReusePreconditioner(ksp_, &reuse));
   // A reused preconditioner was built for an earlier operator (before bonds failed or alpha
@@ -120,12 +181,26 @@ SolveReport LinearSolver::solve(const Vector& b, Vector& x) {
   report.ksp_type = ktype ? ktype : "";
   report.pc_type = ptype ? ptype : "";
 
-  Vector r(b.size(), 1);
-  mult_(x, r);
-  r.axpy(-1.0, b);
-  const double bnorm = b.norm2();
-  report.relative_residual = bnorm > 0 ? r.norm2() / bnorm : r.norm2();
+  true_residual(report);
 
+  if (reason < 0 && fallback_allowed_ && op_) {
+    const std::string krylov = fmt::format("{} + {}: {} after {} iterations", report.ksp_type, report.pc_type,
+                                           report.reason, report.iterations);
+    if (x0) x.copy_from(*x0);
+    SolveReport direct;
+    solve_direct(b, x, direct);
+    true_residual(direct);
+    direct.rebuilt_preconditioner = rebuilt;
+    if (direct.relative_residual <= fallback_tolerance && x.all_finite()) {
+      use_direct_ = true;
+      return direct;
+    }
+    throw SolverError(fmt::format(
+        "the linear solver ({}) diverged, and the direct solve that holds null pivots (MUMPS, {} found) left "
+        "a "
+        "relative residual {:.3e}: the loads do work on a mechanism, there is no quasi-static equilibrium",
+        krylov, direct.null_pivots, direct.relative_residual));
+  }
   if (reason < 0)
     throw SolverError(fmt::format(
         "the linear solver ({} + {}) diverged: {} after {} iterations, relative residual {:.3e}{}. "

@@ -23,6 +23,10 @@ struct SolveReport {
   /// the reused preconditioner was rebuilt for this solve (it failed, or the
   /// iterations had grown: LinearSolver::solve)
   bool rebuilt_preconditioner = false;
+  /// solved by the direct fallback (LinearSolver::allow_direct_fallback)
+  bool direct_fallback = false;
+  /// null pivots MUMPS found and held in that direct solve (−1: none made)
+  int null_pivots = -1;
 };
 
 class LinearSolver {
@@ -48,6 +52,21 @@ class LinearSolver {
   /// options to try.
   SolveReport solve(const Vector& b, Vector& x);
 
+  /// After bond failures the matrix can be singular through mechanisms that
+  /// the supports do not find (a fragment hanging by collinear bonds); a
+  /// Krylov solve then breaks down. With the fallback allowed, a Krylov solve
+  /// that fails (also with a rebuilt preconditioner) is redone by a direct
+  /// solve (MUMPS LU, options prefix `fallback_`) that detects null
+  /// pivots (ICNTL(24) = 1, relative threshold CNTL(3) = 1e-10) and holds
+  /// them: for a consistent right-hand side, the mechanism's loads being in
+  /// balance, that is a solution with the free motions at rest. It is accepted
+  /// when its true relative residual is ≤ max(10 rtol, 1e-9), else
+  /// SolverError; every later solve is then direct. Only for set_operator
+  /// (a matrix with entries). Off by default: a singular matrix from missing
+  /// supports must remain an error.
+  void allow_direct_fallback(bool allow) { fallback_allowed_ = allow; }
+  /// Whether solves are now made by the direct fallback.
+  bool direct() const { return direct_ != nullptr && use_direct_; }
   /// The KSP (for la/ only: NonlinearSolver applies its preconditioner).
   PetscKspHandle handle() const { return ksp_; }
 
@@ -57,6 +76,13 @@ class LinearSolver {
   std::function<void(const Vector&, Vector&)> mult_;
   int baseline_iterations_ = -1;  ///< iterations of the first solve after the last build (reuse)
   bool rebuild_next_ = false;
+  double rtol_ = 1e-8;
+  PetscMatHandle op_ = nullptr;  ///< the assembled operator (set_operator), for the fallback
+  bool fallback_allowed_ = false;
+  PetscKspHandle direct_ = nullptr;  ///< the direct fallback's KSP, made on first use
+  bool use_direct_ = false;          ///< the fallback was needed: every later solve is direct
+  /// Solves by the direct fallback into report (reason, iterations, null pivots).
+  void solve_direct(const Vector& b, Vector& x, SolveReport& report);
 };
 
 }  // namespace perimorph::la

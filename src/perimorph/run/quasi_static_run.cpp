@@ -103,8 +103,15 @@ void QuasiStaticRun::apply_load(int i) {
 void QuasiStaticRun::solve() {
   const double lambda = state_.load_factor;
   try {
+    // Failed bonds can leave mechanisms no support finds: a direct solve that
+    // holds null pivots may then take over (la::LinearSolver).
+    if (!state_.failed.empty()) system_->allow_direct_fallback();
     summary_.last_solve = system_->solve(lambda, u_);
     summary_.preconditioner_rebuilds += summary_.last_solve.rebuilt_preconditioner ? 1 : 0;
+    if (summary_.last_solve.direct_fallback) {
+      ++summary_.direct_fallback_solves;
+      summary_.most_null_pivots = std::max(summary_.most_null_pivots, summary_.last_solve.null_pivots);
+    }
   } catch (const SolverError& e) {
     progress_->finish();
     const std::size_t failed = state_.failed.size();

@@ -57,6 +57,10 @@ struct RunSummary {
   /// Solves that rebuilt the reused preconditioner (la::LinearSolver: it failed, or the iterations had
   /// grown).
   int preconditioner_rebuilds = 0;
+  /// Solves made by the direct fallback that holds null pivots (la::LinearSolver::allow_direct_fallback,
+  /// allowed once bonds have failed), and the most null pivots one of them held.
+  int direct_fallback_solves = 0;
+  int most_null_pivots = 0;
   std::vector<IncrementRecord> history;  ///< one record per completed increment (what the CSV holds)
   /// α of the model the run ended on (grown with [adaptivity]).
   alpha::AlphaField alpha = alpha::AlphaField::constant(0.0);

@@ -39,6 +39,12 @@ class ConstrainedSystem {
   la::SolveReport solve(double lambda, la::Vector& u);
   /// The attached solver (null before attach_solver).
   const la::LinearSolver* solver() const { return solver_.get(); }
+  /// Lets the attached solver fall back to a direct solve that holds null
+  /// pivots when a Krylov solve fails (la::LinearSolver::allow_direct_fallback):
+  /// for a matrix that bond failures may have left singular.
+  void allow_direct_fallback() {
+    if (solver_) solver_->allow_direct_fallback(true);
+  }
   /// A has changed (a downdate or held dofs): the solver takes it again.
   void operator_changed();
 
