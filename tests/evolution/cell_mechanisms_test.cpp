@@ -3,7 +3,10 @@
 // connected, yet A turns singular (the Q1 motion that vanishes at the cell's
 // other points). The support of parts cut free finds it, holds it by as many
 // dofs as it has modes (2 in 2D), A is non-singular again, and the held dofs
-// carry no force. A force that does work on such a motion is an error.
+// carry no force. A force that does work on such a motion is an error. A
+// group of two cells hanging on one bond is a mechanism across cells that no
+// support finds: a direct solve then fails on it, and the direct fallback
+// (la::LinearSolver::allow_direct_fallback) holds its null pivots.
 
 #include "perimorph/evolution/cell_mechanisms.hpp"
 #include "perimorph/assembly/bond_stretch.hpp"
@@ -11,6 +14,7 @@
 #include "perimorph/dofs/dof_map.hpp"
 #include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/evolution/part_support.hpp"
+#include "perimorph/la/petsc_session.hpp"
 #include "perimorph/setup/boundary_conditions.hpp"
 #include "perimorph/setup/discretization.hpp"
 #include "perimorph/system/stiffness.hpp"
@@ -153,6 +157,62 @@ TEST(CellMechanisms, ForceDoingWorkOnTheMotionIsAnError) {
     EXPECT_NE(what.find("no intact bond resists"), std::string::npos) << what;
     EXPECT_NE(what.find("no quasi-static equilibrium"), std::string::npos) << what;
   }
+}
+
+// Cells A and B (neighbours inside the plate) keep their own bonds, the bonds
+// between them and one bond from A to the rest; every other bond of theirs
+// fails. The pair is connected (no part cut free) and each cell is held by the
+// other (no motion inside one cell): the supports hold nothing. The pair can
+// still turn about that bond and move across it, two modes: a Cholesky solve
+// meets a zero pivot; allowed after bond failures, the fallback holds the two
+// null pivots, and since no force acts on the pair the solve is exact.
+TEST(CellMechanisms, PairHangingOnOneBondIsSolvedByTheDirectFallback) {
+  struct Options {  // the options database is global: cleared however the test ends
+    Options() {
+      la::set_option("-ksp_type", "preonly");
+      la::set_option("-pc_type", "cholesky");
+    }
+    ~Options() {
+      for (const char* o : {"-ksp_type", "-pc_type"}) la::clear_option(o);
+    }
+  } options;
+  const auto model = setup::build_discretization(plate(false));
+  evolution::RunState state(model);
+  system::ConstrainedSystem sys = constrained_system(model);
+  const Index A = cell_at(model, Vec3(2.1, 1.1, 0.0)), B = cell_at(model, Vec3(2.4, 1.1, 0.0));
+  const auto& dm = model.dofmap;
+  std::vector<double> u(static_cast<std::size_t>(dm.num_dofs()), 0.0);
+  for (Index a = 0; a < dm.num_nodes(); ++a)
+    for (int d = 0; d < 2; ++d) u[static_cast<std::size_t>(a * 2 + d)] = 1e-3 * dm.node_coordinate(a)[d];
+  evolution::BondFailure failure(model);
+  std::vector<assembly::StretchedBond> bonds = assembly::bonds_over(failure.space(state), u, 0.0);
+  auto in_pair = [&](Index c) { return c == A || c == B; };
+  bool kept_one = false;
+  std::erase_if(bonds, [&](const assembly::StretchedBond& b) {
+    if (!in_pair(b.id.e) && !in_pair(b.id.f)) return true;  // not theirs: intact
+    if (in_pair(b.id.e) && in_pair(b.id.f)) return true;    // inside the pair: intact
+    if (!kept_one && (b.id.e == A || b.id.f == A)) {        // the one bond it hangs on
+      kept_one = true;
+      return true;
+    }
+    return false;
+  });
+  ASSERT_TRUE(kept_one);
+  state.u = u;
+  failure.apply(bonds, state, sys);
+  evolution::PartSupport parts(model);
+  EXPECT_TRUE(parts.inspect(state, sys).quiet());  // nothing the supports find
+  sys.attach_solver();
+  la::Vector x(dm.num_dofs(), 2);
+  EXPECT_THROW(sys.solve(1.0, x), SolverError);
+  sys.allow_direct_fallback();
+  x.set_all(0.0);
+  const la::SolveReport rep = sys.solve(1.0, x);
+  std::printf("pair on one bond: %zu bonds failed; fallback %d, %d null pivots, relative residual %.2e\n",
+              bonds.size(), rep.direct_fallback ? 1 : 0, rep.null_pivots, rep.relative_residual);
+  EXPECT_TRUE(rep.direct_fallback);
+  EXPECT_EQ(rep.null_pivots, 2);
+  EXPECT_LT(rep.relative_residual, 1e-12);
 }
 
 }  // namespace
