@@ -11,17 +11,27 @@
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
+#include <utility>
 
 namespace perimorph::assembly {
 
 namespace {
 
+/// Lets every pair within reach through to the micromodulus.
+struct AnyPair {
+  bool operator()(int, int, const Vec3&, double) const { return true; }
+};
+
 /// Calls visit(g, h, xi, r2, W ᾱ c_bond, broken) for every bond between cells
 /// e ≤ f (g in e, h in f; g < h when f = e), the same bonds as pair_stiffness
 /// with the same c_bond, failed ones flagged. A visit returning bool stops the
-/// pair at the first false. Returns false if a visit stopped it.
-template <int D, class Visit>
-bool for_each_bond_of_pair(const NonlocalSpace& s, Index e, Index f, Visit&& visit) {
+/// pair at the first false. Returns false if a visit stopped it. `wanted(g, h,
+/// xi, r2)` is asked first, before the micromodulus (an exp for the gaussian
+/// and exponential kernels) is computed: a pair it refuses is not visited, so
+/// a pass that needs only a few bonds (those over a stretch) pays the kernel
+/// for those alone.
+template <int D, class Visit, class Wanted = AnyPair>
+bool for_each_bond_of_pair(const NonlocalSpace& s, Index e, Index f, Visit&& visit, Wanted&& wanted = {}) {
   const auto& pts = s.points;
   const int n = pts.per_cell;
   const bool partial = pts.partial_volume();
@@ -39,6 +49,7 @@ bool for_each_bond_of_pair(const NonlocalSpace& s, Index e, Index f, Visit&& vis
       if (!peridynamics::within_reach(r2, reach2)) continue;
       const double abar = 0.5 * (pts.alpha[kg] + pts.alpha[kh]);
       if (abar == 0.0) continue;
+      if (!wanted(g, h, xi, r2)) continue;
       const double cb = peridynamics::uncut_bond_micromodulus<D>(
           s.kernel, pts.x[kg], pts.x[kh], xi, r2, partial ? &pts.half[kg] : nullptr,
           partial ? &pts.half[kh] : nullptr, s.mesh.cuts);
@@ -56,15 +67,25 @@ bool for_each_bond_of_pair(const NonlocalSpace& s, Index e, Index f, Visit&& vis
 }
 
 /// Calls visit(f, g, h, xi, r2, W ᾱ c_bond, broken) for every bond of cell e
-/// with a cell f ≥ e (see for_each_bond_of_pair).
-template <int D, class Visit>
-void for_each_bond_of(const NonlocalSpace& s, Index e, Visit&& visit) {
+/// with a cell f ≥ e that wanted(f, g, h, xi, r2) lets through (see
+/// for_each_bond_of_pair).
+template <int D, class Visit, class Wanted>
+void for_each_bond_of(const NonlocalSpace& s, Index e, Visit&& visit, Wanted&& wanted) {
   for (Index f : s.graph.row(e)) {
     if (f < e) continue;
-    for_each_bond_of_pair<D>(s, e, f, [&](int g, int h, const Vec3& xi, double r2, double Wc, bool failed) {
-      visit(f, g, h, xi, r2, Wc, failed);
-    });
+    for_each_bond_of_pair<D>(
+        s, e, f,
+        [&](int g, int h, const Vec3& xi, double r2, double Wc, bool failed) {
+          visit(f, g, h, xi, r2, Wc, failed);
+        },
+        [&](int g, int h, const Vec3& xi, double r2) { return wanted(f, g, h, xi, r2); });
   }
+}
+
+template <int D, class Visit>
+void for_each_bond_of(const NonlocalSpace& s, Index e, Visit&& visit) {
+  for_each_bond_of<D>(s, e, std::forward<Visit>(visit),
+                      [](Index, int, int, const Vec3&, double) { return true; });
 }
 
 template <int D>
@@ -97,7 +118,12 @@ std::vector<StretchedBond> bonds_over_dim(const NonlocalSpace& s, std::span<cons
 #pragma omp parallel for schedule(dynamic, 8)
   for (Index e = 0; e < ncells; ++e) {
     auto& out = per_cell[static_cast<std::size_t>(e)];
-    for_each_bond_of<D>(s, e, [&](Index f, int g, int h, const Vec3& xi, double r2, double Wc, bool failed) {
+    // The stretch needs only the geometry: the micromodulus is computed for the bonds over the threshold.
+    auto over = [&](Index f, int g, int h, const Vec3& xi, double r2) {
+      const Vec3 du = up[s.points.index(f, h)] - up[s.points.index(e, g)];
+      return du.dot(xi) / r2 > threshold;
+    };
+    auto keep = [&](Index f, int g, int h, const Vec3& xi, double r2, double Wc, bool failed) {
       if (failed) return;
       const Vec3 du = up[s.points.index(f, h)] - up[s.points.index(e, g)];
       const double eta_r = du.dot(xi);  // η |ξ|
@@ -110,7 +136,8 @@ std::vector<StretchedBond> bonds_over_dim(const NonlocalSpace& s, std::span<cons
       b.k = Wc / r2;
       b.xi = xi;
       out.push_back(b);
-    });
+    };
+    for_each_bond_of<D>(s, e, keep, over);
   }
   std::vector<StretchedBond> all;
   for (auto& v : per_cell) all.insert(all.end(), v.begin(), v.end());
