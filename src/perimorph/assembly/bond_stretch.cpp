@@ -126,9 +126,8 @@ std::vector<StretchedBond> bonds_over_dim(const NonlocalSpace& s, std::span<cons
     auto keep = [&](Index f, int g, int h, const Vec3& xi, double r2, double Wc, bool failed) {
       if (failed) return;
       const Vec3 du = up[s.points.index(f, h)] - up[s.points.index(e, g)];
-      const double eta_r = du.dot(xi);  // η |ξ|
-      const double stretch = eta_r / r2;
-      if (!(stretch > threshold)) return;
+      const double eta_r = du.dot(xi);    // η |ξ|
+      const double stretch = eta_r / r2;  // > threshold: `over` let it through
       StretchedBond b;
       b.id = {e, f, g, h};
       b.stretch = stretch;
