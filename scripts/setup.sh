@@ -6,9 +6,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# libopenblas0-serial: an optimized BLAS/LAPACK for PETSc's MUMPS, CHOLMOD and hypre (Debian's
+# alternatives pick it over the reference BLAS); serial, so it never competes with OpenMP threads.
+# Measured on the flagship: MUMPS Cholesky 21.6 -> 9.5 s (docs/benchmarks/fracture-update.md).
 packages=(build-essential cmake ninja-build pkg-config petsc-dev libeigen3-dev libtomlplusplus-dev
           libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev openmpi-bin
-          python3 python3-matplotlib python3-numpy)
+          libopenblas0-serial python3 python3-matplotlib python3-numpy)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
