@@ -341,6 +341,23 @@ TEST(Fracture, FailedBondsFileAddsUpToTheEnergyColumns) {
     }
     EXPECT_NEAR(dissipated, last.dissipated, 1e-12 * last.dissipated);
     EXPECT_NEAR(overshoot, last.overshoot, 1e-12 * last.dissipated);
+
+    // BASENAME_failures.csv: one row per bond-breaking iteration, whose bonds
+    // add up to the failed-bond file's, each with its re-solve and its time.
+    const auto iterations = read_rows((std::filesystem::path(dir) / "pulled_failures.csv").string());
+    ASSERT_FALSE(iterations.empty());
+    double bonds = 0.0, seconds = 0.0;
+    for (const auto& r : iterations) {
+      bonds += r.at("bonds_failed");
+      EXPECT_GE(r.at("solver_iterations"), 0.0);
+      EXPECT_TRUE(r.at("preconditioner_rebuilt") == 0.0 || r.at("preconditioner_rebuilt") == 1.0);
+      EXPECT_GE(r.at("wall_time"), 0.0);
+      seconds += r.at("wall_time");
+    }
+    EXPECT_EQ(bonds, static_cast<double>(rows.size()));
+    // Each row times its own iteration (not the time since the start): together
+    // they fit in the run.
+    EXPECT_LE(seconds, last.wall_time);
   }
 }
 

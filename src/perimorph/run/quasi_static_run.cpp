@@ -126,6 +126,9 @@ void QuasiStaticRun::solve() {
         kept()));
   }
   warn_unused_options();
+  const auto solved = std::chrono::steady_clock::now();
+  const double iteration_seconds = std::chrono::duration<double>(solved - last_solved_).count();
+  last_solved_ = solved;
   double& work = state_.energy.external_work;
   if (rec_.break_iterations == 0) {
     // Work of all external forces (applied + reactions = K u at equilibrium)
@@ -144,7 +147,7 @@ void QuasiStaticRun::solve() {
     for (const auto& b : fracture_->proposed()) max_stretch = std::max(max_stretch, b.stretch);
     output_->add_failure_row(state_.increment, rec_.break_iterations, fracture_->proposed().size(),
                              fracture_->applied_energy(), max_stretch / fracture_->s_crit(),
-                             summary_.last_solve.iterations);
+                             summary_.last_solve, iteration_seconds);
   }
   state_.u = u_.to_std();
   const std::vector<double>& F = system_->applied_force();

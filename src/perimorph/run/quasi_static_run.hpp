@@ -88,6 +88,8 @@ class QuasiStaticRun {
   const setup::Discretization* disc_;             ///< the current one: the caller's (non-owning) or owned_
   std::unique_ptr<setup::Discretization> owned_;  ///< rebuilt for a grown α (null before)
   std::chrono::steady_clock::time_point start_;
+  /// end of the last solve: a bond-breaking iteration (stretch pass, update, re-solve) is timed from it
+  std::chrono::steady_clock::time_point last_solved_;
   std::unique_ptr<io::ProgressLine> own_progress_;
   io::ProgressLine* progress_ = nullptr;  ///< non-owning: own_progress_ or the caller's
   RunSetup setup_;

@@ -83,7 +83,8 @@ RunOutput::RunOutput(const setup::Discretization& model, std::string directory, 
     failures_csv_ = std::make_unique<io::CsvTable>(
         failures_csv_path(),
         std::vector<std::string>{"increment", "iteration", "bonds_failed", "dissipated_energy",
-                                 "overshoot_energy", "max_stretch_ratio", "solver_iterations"});
+                                 "overshoot_energy", "max_stretch_ratio", "solver_iterations",
+                                 "preconditioner_rebuilt", "wall_time"});
   if (fracture_ && model.config.output.failed_bonds)
     failed_bonds_csv_ = std::make_unique<io::CsvTable>(
         (std::filesystem::path(directory_) / (basename_ + "_failed_bonds.csv")).string(),
@@ -227,11 +228,12 @@ void RunOutput::add_alpha_balls(std::span<const evolution::AlphaBall> balls) {
 
 void RunOutput::add_failure_row(int increment, int iteration, std::size_t bonds,
                                 const evolution::FailureEnergy& energy, double max_ratio,
-                                int solver_iterations) {
+                                const la::SolveReport& solve, double seconds) {
   if (!failures_csv_) return;
   failures_csv_->add_row({static_cast<double>(increment), static_cast<double>(iteration),
                           static_cast<double>(bonds), energy.dissipated, energy.overshoot, max_ratio,
-                          static_cast<double>(solver_iterations)});
+                          static_cast<double>(solve.iterations), solve.rebuilt_preconditioner ? 1.0 : 0.0,
+                          seconds});
 }
 
 void RunOutput::add_failed_bonds(const setup::Discretization& model, int increment, int iteration,

@@ -9,6 +9,7 @@
 #include "perimorph/evolution/local_damage.hpp"
 #include "perimorph/io/csv_table.hpp"
 #include "perimorph/io/pvd_writer.hpp"
+#include "perimorph/la/linear_solver.hpp"
 #include "perimorph/setup/discretization.hpp"
 
 #include <memory>
@@ -67,9 +68,12 @@ class RunOutput {
   void add_row(const IncrementRecord& r);
   /// Fracture runs: one row per bond-breaking iteration in BASENAME_failures.csv
   /// (increment, iteration, bonds failed, their energy at s_crit and beyond,
-  /// the largest s/s_crit, Krylov iterations of the re-solve).
+  /// the largest s/s_crit, Krylov iterations of the re-solve, whether its
+  /// preconditioner was rebuilt, and the iteration's wall time `seconds`:
+  /// stretch pass, update of the system and re-solve).
   void add_failure_row(int increment, int iteration, std::size_t bonds,
-                       const evolution::FailureEnergy& energy, double max_ratio, int solver_iterations);
+                       const evolution::FailureEnergy& energy, double max_ratio, const la::SolveReport& solve,
+                       double seconds);
   /// With [output] failed_bonds: one row per bond of `bonds` in
   /// BASENAME_failed_bonds.csv (its points, stretch, energy at s_crit and
   /// beyond; docs/output.md). Bonds already failed are the caller's to skip.
