@@ -37,8 +37,22 @@ int check(const std::string& path) {
 namespace {
 
 /// A PETSc session with no options of its own (commands that assemble but do not solve).
+/// Stops a command started on more than one MPI process (OneProcessOnly).
+void require_one_process() {
+  const int size = perimorph::la::world_size();
+  if (size == 1) return;
+  throw OneProcessOnly(
+      fmt::format("perimorph runs on one MPI process; this one was started on {} (mpirun -n {}). Distributed "
+                  "runs are not implemented yet: start it without mpirun, and set OMP_NUM_THREADS for the "
+                  "threads of its assembly and bond loops",
+                  size, size),
+      perimorph::la::world_rank());
+}
+
 std::unique_ptr<perimorph::la::PetscSession> quiet_petsc() {
-  return std::make_unique<perimorph::la::PetscSession>();
+  auto session = std::make_unique<perimorph::la::PetscSession>();
+  require_one_process();
+  return session;
 }
 
 }  // namespace
@@ -119,6 +133,7 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
   int argc = static_cast<int>(args.size());
   char** argv_ptr = argv.data();
   perimorph::la::PetscSession petsc(argc, argv_ptr);
+  require_one_process();
   const auto model = perimorph::setup::build_discretization(
       config, [&](const std::string& phase) { progress.phase(phase); });
   const auto summary = perimorph::run::run_static(model, {out_dir, quiet, &progress});

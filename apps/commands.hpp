@@ -5,10 +5,19 @@
 
 #include <chrono>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace perimorph::app {
+
+/// Thrown by every command started on more than one MPI process: no stage is
+/// distributed yet (issue 17), so such a run stops at once instead of failing
+/// inside PETSc. `rank` is this process's; main prints the message on rank 0 only.
+struct OneProcessOnly : std::runtime_error {
+  OneProcessOnly(const std::string& what, int r) : std::runtime_error(what), rank(r) {}
+  int rank;
+};
 
 /// Builds the case as `run` does before its first solve (model, constraints,
 /// loads, reaction sets, fracture set-up) without assembling or solving.

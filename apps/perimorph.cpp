@@ -188,6 +188,9 @@ int main(int argc, char** argv) {
     if (*ghost_cmd) return ghost_forces(case_path, strain, out_dir);
     if (*gc_cmd) return gc(case_path, gc_point, gc_normal, gc_s_crit);
     return run(case_path, out_dir, quiet, args.petsc, start);
+  } catch (const perimorph::app::OneProcessOnly& e) {
+    if (e.rank == 0) fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
   } catch (const perimorph::InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;

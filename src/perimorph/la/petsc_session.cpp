@@ -69,6 +69,12 @@ int world_size() {
   return size;
 }
 
+int world_rank() {
+  PetscMPIInt rank = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  return rank;
+}
+
 void set_option(const std::string& name, const std::string& value) {
   if (name.size() < 2 || name[0] != '-')
     throw InputError(fmt::format("PETSc option names must start with '-': got '{}'", name));

@@ -32,6 +32,8 @@ std::vector<std::string> unused_options();
 
 /// Number of MPI ranks in PETSC_COMM_WORLD.
 int world_size();
+/// This process's rank in PETSC_COMM_WORLD.
+int world_rank();
 
 /// Sets one option ("-ksp_type", "preonly"), replacing any value it had, the
 /// command line's included; an empty value sets a flag. For programs that
