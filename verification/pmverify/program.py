@@ -65,7 +65,10 @@ class RunSpec:
         return a + [str(x) for x in self.args]
 
     def key(self, binary_md5):
-        text = "\0".join([binary_md5, self.name, self.command, *map(str, self.args), strip_comments(self.case_text)])
+        # A run stopped by its time limit is not the run without one: the limit is part of the key when set.
+        limit = [f"timeout={self.timeout:g}"] if self.timeout else []
+        text = "\0".join([binary_md5, self.name, self.command, *map(str, self.args), *limit,
+                          strip_comments(self.case_text)])
         return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 

@@ -34,6 +34,7 @@ class Context:
         self.mode = "reduced" if reduced else "full"
         self.results_by_name = {}
         self.t0 = time.time()
+        self.time_limit = None  # seconds per full-size run (--time-limit), for the cases that use it
 
     # ------------------------------------------------------------------ running
     def run(self, spec):
@@ -80,6 +81,9 @@ def parser(description):
                     help="where the reports go (default: verification/results/ full, build/verification/ reduced)")
     ap.add_argument("--cache", default=None,
                     help="run cache (default: $PERIMORPH_VERIFY_CACHE or verification/.cache/)")
+    ap.add_argument("--time-limit", type=float, default=None,
+                    help="seconds per program run of the full size: a run still going is stopped and reported as "
+                         "such (cases that support it: B8)")
     ap.add_argument("--jobs", type=int, default=max(1, min(2, os.cpu_count() or 1)),
                     help="program runs at a time (each with OMP_NUM_THREADS=1 unless the case says otherwise)")
     return ap
@@ -88,7 +92,9 @@ def parser(description):
 def make_context(args, argv):
     program = Program(args.perimorph, args.cache)
     results = args.results or (os.path.join(REPO, "build", "verification") if args.reduced else RESULTS)
-    return Context(program, args.reduced, os.path.abspath(results), args.jobs, argv)
+    ctx = Context(program, args.reduced, os.path.abspath(results), args.jobs, argv)
+    ctx.time_limit = args.time_limit
+    return ctx
 
 
 def run_case(module, ctx):
