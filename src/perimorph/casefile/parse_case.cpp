@@ -22,7 +22,9 @@
 #include <fmt/ranges.h>
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -71,6 +73,47 @@ void read_box(const Table& t, int dim, Vec3& lower, Vec3& upper) {
       hi.elements()[static_cast<std::size_t>(i)].fail(
           fmt::format("must be greater than {}[{}] = {} (the box needs a positive extent along {}), got {}",
                       t.key_path("lower"), i + 1, lower[i], kAxis[i], upper[i]));
+}
+
+/// Refuses a box whose cells double precision cannot represent: a cell size
+/// below the resolution of its node coordinates, a size whose inverse (the
+/// shape-function gradients) or whose volume over- or underflows, or cells so
+/// elongated that their stiffness is singular in double precision (its
+/// eigenvalues span the aspect ratio squared: above 1/sqrt(machine epsilon)).
+void check_cell_size(const Table& mesh, const BoxMesh& box) {
+  const Value hi = mesh.require("upper", "the upper corner");
+  const Value cells = mesh.require("cells", "the number of cells along each axis");
+  const double eps = std::numeric_limits<double>::epsilon();
+  double volume = 1.0, smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
+  for (int i = 0; i < box.dim; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const double h = (box.upper[k] - box.lower[k]) / box.cells[k];
+    const double scale = std::max(std::abs(box.lower[k]), std::abs(box.upper[k]));
+    if (!(h > 1e3 * eps * scale) || !std::isfinite(1.0 / h) || !std::isnormal(h))
+      hi.elements()[k].fail(fmt::format(
+          "gives cells {:g} long along {} ({} cells between {} and {}): too small for double precision "
+          "(below 1000 machine epsilons of the coordinates, or so small that 1/h, the scale of the "
+          "shape-function gradients, overflows); choose the box in units where the cells are not tiny "
+          "against the coordinates (mm instead of m, or the box at the origin)",
+          h, kAxis[i], box.cells[k], box.lower[k], box.upper[k]));
+    volume *= h;
+    smallest = std::min(smallest, h);
+    largest = std::max(largest, h);
+  }
+  if (!std::isnormal(volume) || !std::isfinite(1.0 / volume))
+    cells.fail(
+        fmt::format("gives cells of {} {:g}, which double precision cannot hold (below {:g} or above "
+                    "{:g}); choose other units for the box",
+                    box.dim == 3   ? "volume"
+                    : box.dim == 2 ? "area"
+                                   : "length",
+                    volume, std::numeric_limits<double>::min(), std::numeric_limits<double>::max()));
+  if (largest / smallest > 1.0 / std::sqrt(eps))
+    cells.fail(
+        fmt::format("gives cells with aspect ratio {:.3g} (sizes {:g} to {:g}): above 1/sqrt(machine "
+                    "epsilon) = {:.3g} their stiffness is singular in double precision; use more "
+                    "cells along the long side or fewer along the short one",
+                    largest / smallest, smallest, largest, 1.0 / std::sqrt(eps)));
 }
 
 // ------------------------------------------------------------ [case], [mesh]
@@ -213,6 +256,8 @@ void read_mesh(const Table& root, CaseConfig& c) {
         fmt::format("gives {:.0f} nodes and {:.0f} displacement unknowns; at most {} are supported "
                     "(32-bit indices)",
                     nodes, nodes * dim, kMaxInt));
+
+  check_cell_size(*mesh, box);
 
   for (const Table& t : mesh->tables("hole")) c.mesh.holes.push_back(read_hole(t, dim));
   for (const Table& t : mesh->tables("cut")) c.mesh.cuts.push_back(read_cut(t, box));
