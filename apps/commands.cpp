@@ -4,6 +4,7 @@
 
 #include "perimorph/casefile/parse_case.hpp"
 #include "perimorph/core/error.hpp"
+#include "perimorph/core/interrupt.hpp"
 #include "perimorph/diagnostics/case_report.hpp"
 #include "perimorph/diagnostics/ghost_forces.hpp"
 #include "perimorph/io/progress.hpp"
@@ -134,6 +135,9 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
   char** argv_ptr = argv.data();
   perimorph::la::PetscSession petsc(argc, argv_ptr);
   require_one_process();
+  // After PETSc's initialization (which installs its own handlers): SIGINT and
+  // SIGTERM stop the run between solves, its files in step.
+  perimorph::install_stop_handlers();
   const auto model = perimorph::setup::build_discretization(
       config, [&](const std::string& phase) { progress.phase(phase); });
   const auto summary = perimorph::run::run_static(model, {out_dir, quiet, &progress});

@@ -15,6 +15,7 @@
 
 #include "perimorph/casefile/suggest.hpp"
 #include "perimorph/core/error.hpp"
+#include "perimorph/core/interrupt.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -191,6 +192,9 @@ int main(int argc, char** argv) {
   } catch (const perimorph::app::OneProcessOnly& e) {
     if (e.rank == 0) fmt::print(stderr, "error: {}\n", e.what());
     return 2;
+  } catch (const perimorph::Interrupted& e) {
+    fmt::print(stderr, "stopped: {}\n", e.what());
+    return 128 + e.signal;
   } catch (const perimorph::InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;

@@ -1,6 +1,7 @@
 #include "perimorph/run/quasi_static_run.hpp"
 
 #include "perimorph/core/error.hpp"
+#include "perimorph/core/interrupt.hpp"
 #include "perimorph/io/progress.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/system/stiffness.hpp"
@@ -101,6 +102,7 @@ void QuasiStaticRun::apply_load(int i) {
 }
 
 void QuasiStaticRun::solve() {
+  stop_if_asked();
   const double lambda = state_.load_factor;
   try {
     // Failed bonds can leave mechanisms no support finds: a direct solve that
@@ -234,6 +236,18 @@ void QuasiStaticRun::stop_unsettled(std::size_t over) {
       "is in {}. {}",
       i, increments(), state_.load_factor, rec_.break_iterations, rec_.bonds_broken_increment, over,
       max_iterations_source(disc_->config.fracture), i, files, output.failures_csv_path(), kept()));
+}
+
+void QuasiStaticRun::stop_if_asked() {
+  const int signal = stop_requested();
+  if (signal == 0) return;
+  progress_->finish();
+  throw Interrupted(
+      fmt::format("{} received: the run stops in increment {}/{} (load factor {}) before its solve "
+                  "{}; that increment is not written. {}",
+                  signal_name(signal), state_.increment, increments(), state_.load_factor,
+                  rec_.break_iterations + 1, kept()),
+      signal);
 }
 
 void QuasiStaticRun::stop_unsupported(const std::exception& e) {

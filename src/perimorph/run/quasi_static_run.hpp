@@ -74,6 +74,9 @@ class QuasiStaticRun {
   [[noreturn]] void stop_damage_unsettled();
   /// The VTU fields of the state's fracture and damage (empty where absent).
   void write_vtu(int increment);
+  /// A pending stop request (core/interrupt.hpp) ends the run here, between
+  /// solves: Interrupted, naming the increment and what is written.
+  void stop_if_asked();
   [[noreturn]] void stop_unsupported(const std::exception& e);
   void warn_unused_options();
   /// Lets the adaptivity component grow α now; true if it did (and the run
