@@ -65,10 +65,7 @@ class RunSpec:
         return a + [str(x) for x in self.args]
 
     def key(self, binary_md5):
-        # A run stopped by its time limit is not the run without one: the limit is part of the key when set.
-        limit = [f"timeout={self.timeout:g}"] if self.timeout else []
-        text = "\0".join([binary_md5, self.name, self.command, *map(str, self.args), *limit,
-                          strip_comments(self.case_text)])
+        text = "\0".join([binary_md5, self.name, self.command, *map(str, self.args), strip_comments(self.case_text)])
         return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
@@ -155,8 +152,11 @@ class Program:
             if os.path.isfile(done):
                 with open(done) as f:
                     rec = json.load(f)
-                return RunResult(spec, d, rec["returncode"], rec["stdout"], rec["stderr"], rec["wall_s"],
-                                 rec["cpu_s"], tuple(rec["load"]), True)
+                # A run that ended is the same whatever limit it ran under; one its time limit stopped
+                # stands only for a spec with that limit.
+                if rec["returncode"] != 124 or rec.get("timeout") == spec.timeout:
+                    return RunResult(spec, d, rec["returncode"], rec["stdout"], rec["stderr"], rec["wall_s"],
+                                     rec["cpu_s"], tuple(rec["load"]), True)
             if os.path.isdir(d):
                 shutil.rmtree(d)  # an interrupted run
             os.makedirs(d)
@@ -175,7 +175,7 @@ class Program:
             with open(done + ".tmp", "w") as f:
                 json.dump({"argv": argv, "returncode": result.returncode, "stdout": result.stdout,
                            "stderr": result.stderr, "wall_s": result.wall_s, "cpu_s": result.cpu_s,
-                           "load": list(result.load), "program": self.provenance(),
+                           "load": list(result.load), "timeout": spec.timeout, "program": self.provenance(),
                            "date": time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime())}, f, indent=1)
             os.replace(done + ".tmp", done)
             return result
