@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <string>
 #include <vector>
@@ -83,6 +84,57 @@ TEST_F(LaLinearSolverReuse, ReusedPreconditionerThatFailsIsRebuiltAndTheSolveRet
   // The rebuilt preconditioner is reused again: the same matrix needs no rebuild.
   x.set_all(0.0);
   EXPECT_FALSE(solver.solve(b, x).rebuilt_preconditioner);
+}
+
+TEST(LaLinearSolverReuseFactor, AKeptCholeskyFactorSolvesARankOneChangeInTwoIterations) {
+  // A failed bond removes a rank-one block: with the factor of the matrix
+  // before it, the preconditioned operator is I − (rank one), so CG converges
+  // in at most two iterations (exact arithmetic) and the factor is kept. The
+  // solver the fracture examples use (CG + a kept MUMPS Cholesky factor).
+  constexpr int m = 30;
+  la::set_option("-ksp_type", "cg");
+  la::set_option("-pc_type", "cholesky");
+  la::set_option("-pc_factor_mat_solver_type", "mumps");
+  la::set_option("-ksp_reuse_preconditioner");
+  la::LinearSolver solver(1e-12, 1000);
+  for (const char* o : {"-ksp_type", "-pc_type", "-pc_factor_mat_solver_type", "-ksp_reuse_preconditioner"})
+    la::clear_option(o);
+  // A chain of m springs of stiffness 1 + i, held at one end: K is SPD and tridiagonal.
+  assembly::SparsityPattern p;
+  p.block_size = 1;
+  p.row_offsets.push_back(0);
+  for (int i = 0; i < m; ++i) {
+    for (int j = std::max(0, i - 1); j <= std::min(m - 1, i + 1); ++j) p.columns.push_back(j);
+    p.row_offsets.push_back(static_cast<Index>(p.columns.size()));
+  }
+  la::Matrix A(p);
+  auto add_spring = [&](int i, double k) {  // between dof i − 1 (or the support) and dof i
+    if (i == 0) {
+      const std::array<Index, 1> r{0};
+      const std::array<double, 1> v{k};
+      A.add(r, r, v);
+      return;
+    }
+    const std::array<Index, 2> r{i - 1, i};
+    const std::array<double, 4> v{k, -k, -k, k};
+    A.add(r, r, v);
+  };
+  A.zero_entries();
+  for (int i = 0; i < m; ++i) add_spring(i, 1.0 + i);
+  A.finalize();
+  const std::vector<Vec3> points(m, Vec3::Zero());
+  la::Vector b(m, 1), x(m, 1);
+  b.set_all(1.0);
+  solver.set_operator(A, points, 1);
+  x.set_all(0.0);
+  EXPECT_LE(solver.solve(b, x).iterations, 1);  // the factor of this matrix: exact
+  add_spring(17, -0.5 * (1.0 + 17));            // the spring of dof 17 loses half its stiffness: rank one
+  A.finalize();
+  solver.set_operator(A, points, 1);
+  const la::SolveReport changed = solver.solve(b, x);
+  EXPECT_FALSE(changed.rebuilt_preconditioner);
+  EXPECT_LE(changed.iterations, 2);
+  EXPECT_LE(changed.relative_residual, 1e-10);
 }
 
 TEST(LaLinearSolverReuseGrowth,
