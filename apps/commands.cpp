@@ -37,7 +37,6 @@ int check(const std::string& path) {
 
 namespace {
 
-/// A PETSc session with no options of its own (commands that assemble but do not solve).
 /// Stops a command started on more than one MPI process (OneProcessOnly).
 void require_one_process() {
   const int size = perimorph::la::world_size();
@@ -50,6 +49,7 @@ void require_one_process() {
       perimorph::la::world_rank());
 }
 
+/// A PETSc session with no options of its own (commands that assemble but do not solve).
 std::unique_ptr<perimorph::la::PetscSession> quiet_petsc() {
   auto session = std::make_unique<perimorph::la::PetscSession>();
   require_one_process();

@@ -16,11 +16,22 @@ import math
 import statistics
 
 
+NEEDED = ("bonds_failed", "solver_iterations", "preconditioner_rebuilt", "wall_time")
+
+
 def read(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    if rows and "wall_time" not in rows[0]:
-        raise SystemExit(f"{path}: no wall_time column (written by perimorph since 2026-12-04)")
+    try:
+        with open(path, newline="") as f:
+            reader = csv.DictReader(f)
+            rows = list(reader)
+            columns = reader.fieldnames or []
+    except OSError as e:
+        raise SystemExit(f"{path}: cannot read it ({e.strerror})")
+    missing = [c for c in NEEDED if c not in columns]
+    if missing:
+        raise SystemExit(f"{path}: no column {', '.join(missing)}: give a run's BASENAME_failures.csv (one row per "
+                         "bond-breaking iteration, written by fracture runs; wall_time and preconditioner_rebuilt "
+                         "since 2026-12-04), not BASENAME.csv")
     return [{"bonds": int(float(r["bonds_failed"])), "its": int(float(r["solver_iterations"])),
              "rebuilt": float(r["preconditioner_rebuilt"]) > 0, "t": float(r["wall_time"])} for r in rows]
 

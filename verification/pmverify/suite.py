@@ -29,12 +29,12 @@ RESULTS = os.path.join(REPO, "verification", "results")
 
 
 class Context:
-    def __init__(self, program, reduced, results, jobs, argv):
+    def __init__(self, program, reduced, results, jobs, argv, time_limit=None):
         self.program, self.reduced, self.results, self.jobs, self.argv = program, reduced, results, jobs, argv
+        self.time_limit = time_limit  # seconds per full-size run (--time-limit), for the cases that use it
         self.mode = "reduced" if reduced else "full"
         self.results_by_name = {}
         self.t0 = time.time()
-        self.time_limit = None  # seconds per full-size run (--time-limit), for the cases that use it
 
     # ------------------------------------------------------------------ running
     def run(self, spec):
@@ -92,9 +92,7 @@ def parser(description):
 def make_context(args, argv):
     program = Program(args.perimorph, args.cache)
     results = args.results or (os.path.join(REPO, "build", "verification") if args.reduced else RESULTS)
-    ctx = Context(program, args.reduced, os.path.abspath(results), args.jobs, argv)
-    ctx.time_limit = args.time_limit
-    return ctx
+    return Context(program, args.reduced, os.path.abspath(results), args.jobs, argv, args.time_limit)
 
 
 def run_case(module, ctx):

@@ -89,18 +89,18 @@ void check_cell_size(const Table& mesh, const BoxMesh& box) {
     const auto k = static_cast<std::size_t>(i);
     const double h = (box.upper[k] - box.lower[k]) / box.cells[k];
     const double scale = std::max(std::abs(box.lower[k]), std::abs(box.upper[k]));
-    if (!(h > 1e3 * eps * scale) || !std::isfinite(1.0 / h) || !std::isnormal(h))
+    if (!(h > 1e3 * eps * scale) || !std::isnormal(h))
       hi.elements()[k].fail(fmt::format(
           "gives cells {:g} long along {} ({} cells between {} and {}): too small for double precision "
-          "(below 1000 machine epsilons of the coordinates, or so small that 1/h, the scale of the "
-          "shape-function gradients, overflows); choose the box in units where the cells are not tiny "
+          "(below 1000 machine epsilons of the coordinates, or a subnormal number, whose inverse, the scale "
+          "of the shape-function gradients, overflows); choose the box in units where the cells are not tiny "
           "against the coordinates (mm instead of m, or the box at the origin)",
           h, kAxis[i], box.cells[k], box.lower[k], box.upper[k]));
     volume *= h;
     smallest = std::min(smallest, h);
     largest = std::max(largest, h);
   }
-  if (!std::isnormal(volume) || !std::isfinite(1.0 / volume))
+  if (!std::isnormal(volume) || !std::isnormal(1.0 / volume))
     cells.fail(
         fmt::format("gives cells of {} {:g}, which double precision cannot hold (below {:g} or above "
                     "{:g}); choose other units for the box",
