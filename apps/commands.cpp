@@ -16,6 +16,7 @@
 #include <fmt/ranges.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <utility>
@@ -41,12 +42,18 @@ namespace {
 void require_one_process() {
   const int size = perimorph::la::world_size();
   if (size == 1) return;
-  throw OneProcessOnly(
-      fmt::format("perimorph runs on one MPI process; this one was started on {} (mpirun -n {}). Distributed "
-                  "runs are not implemented yet: start it without mpirun, and set OMP_NUM_THREADS for the "
-                  "threads of its assembly and bond loops",
-                  size, size),
-      perimorph::la::world_rank());
+  // Rank 0 prints, and every rank waits for it: a rank that exited first would
+  // have mpirun kill rank 0 before the message is out.
+  if (perimorph::la::world_rank() == 0) {
+    fmt::print(stderr,
+               "error: perimorph runs on one MPI process; this one was started on {} (mpirun -n {}). "
+               "Distributed runs are not implemented yet: start it without mpirun, and set OMP_NUM_THREADS "
+               "for the threads of its assembly and bond loops\n",
+               size, size);
+    std::fflush(stderr);
+  }
+  perimorph::la::barrier();
+  throw OneProcessOnly("more than one MPI process");
 }
 
 /// A PETSc session with no options of its own (commands that assemble but do not solve).

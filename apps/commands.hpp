@@ -13,10 +13,9 @@ namespace perimorph::app {
 
 /// Thrown by every command started on more than one MPI process: no stage is
 /// distributed yet (issue 17), so such a run stops at once instead of failing
-/// inside PETSc. `rank` is this process's; main prints the message on rank 0 only.
+/// inside PETSc. The message is already printed (once, by rank 0).
 struct OneProcessOnly : std::runtime_error {
-  OneProcessOnly(const std::string& what, int r) : std::runtime_error(what), rank(r) {}
-  int rank;
+  using std::runtime_error::runtime_error;
 };
 
 /// Builds the case as `run` does before its first solve (model, constraints,

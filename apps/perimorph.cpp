@@ -189,8 +189,7 @@ int main(int argc, char** argv) {
     if (*ghost_cmd) return ghost_forces(case_path, strain, out_dir);
     if (*gc_cmd) return gc(case_path, gc_point, gc_normal, gc_s_crit);
     return run(case_path, out_dir, quiet, args.petsc, start);
-  } catch (const perimorph::app::OneProcessOnly& e) {
-    if (e.rank == 0) fmt::print(stderr, "error: {}\n", e.what());
+  } catch (const perimorph::app::OneProcessOnly&) {  // printed where it was found
     return 2;
   } catch (const perimorph::Interrupted& e) {
     fmt::print(stderr, "stopped: {}\n", e.what());

@@ -75,6 +75,10 @@ int world_rank() {
   return rank;
 }
 
+void barrier() {
+  MPI_Barrier(PETSC_COMM_WORLD);
+}
+
 void set_option(const std::string& name, const std::string& value) {
   if (name.size() < 2 || name[0] != '-')
     throw InputError(fmt::format("PETSc option names must start with '-': got '{}'", name));

@@ -34,6 +34,8 @@ std::vector<std::string> unused_options();
 int world_size();
 /// This process's rank in PETSC_COMM_WORLD.
 int world_rank();
+/// Waits until every rank of PETSC_COMM_WORLD has reached it.
+void barrier();
 
 /// Sets one option ("-ksp_type", "preonly"), replacing any value it had, the
 /// command line's included; an empty value sets a flag. For programs that
