@@ -128,7 +128,7 @@ int gc(const std::string& path, std::vector<double> point, std::vector<double> n
 }
 
 int run(const std::string& path, const std::string& out_dir, bool quiet, std::vector<std::string> petsc_args,
-        std::chrono::steady_clock::time_point start) {
+        std::chrono::steady_clock::time_point start, const std::string& restart, int checkpoint_every) {
   const auto config = perimorph::casefile::parse_case_file(path);
   perimorph::io::ProgressLine progress(static_cast<int>(config.loading.factors.size()), !quiet, start);
   progress.phase("PETSc");
@@ -147,9 +147,12 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
   perimorph::install_stop_handlers();
   const auto model = perimorph::setup::build_discretization(
       config, [&](const std::string& phase) { progress.phase(phase); });
-  const auto summary = perimorph::run::run_static(model, {out_dir, quiet, &progress});
+  const auto summary =
+      perimorph::run::run_static(model, {out_dir, quiet, &progress, restart, checkpoint_every});
   progress.finish();
   if (!quiet) {
+    if (summary.restarted_after > 0)
+      fmt::print("continued after increment {} ({})\n", summary.restarted_after, restart);
     fmt::print("{}: {} increment(s), {} dofs; last solve {} + {}: {} iterations, relative residual {:.2e}\n",
                path, summary.increments_done, model.dofmap.num_dofs(), summary.last_solve.ksp_type,
                summary.last_solve.pc_type, summary.last_solve.iterations,
@@ -167,6 +170,8 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
       fmt::print("reaction on '{}': ({:.6e}, {:.6e}, {:.6e})\n", summary.reaction_names[k],
                  summary.reactions[k].x(), summary.reactions[k].y(), summary.reactions[k].z());
     fmt::print("wrote {}{}\n", summary.csv_path, summary.pvd_path.empty() ? "" : " and " + summary.pvd_path);
+    if (!summary.checkpoint_path.empty() && summary.checkpoint_increment > summary.restarted_after)
+      fmt::print("checkpoint of increment {}: {}\n", summary.checkpoint_increment, summary.checkpoint_path);
   }
   return 0;
 }

@@ -33,8 +33,11 @@ int gc(const std::string& path, std::vector<double> point, std::vector<double> n
        std::optional<double> s_option);
 
 /// Runs a case; `petsc_args` go to PETSc's options database. Times on the
-/// progress line count from `start` (the program's start).
+/// progress line count from `start` (the program's start). `restart`: a
+/// checkpoint to continue ("" none); `checkpoint_every` ≥ 0 overrides the
+/// case's [output] checkpoint_every.
 int run(const std::string& path, const std::string& out_dir, bool quiet, std::vector<std::string> petsc_args,
-        std::chrono::steady_clock::time_point start);
+        std::chrono::steady_clock::time_point start, const std::string& restart = "",
+        int checkpoint_every = -1);
 
 }  // namespace perimorph::app

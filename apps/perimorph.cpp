@@ -4,7 +4,7 @@
 //
 //   perimorph check CASE                 validate a case file without running
 //   perimorph info CASE                  calibration and discretization figures
-//   perimorph run CASE [-o DIR] [--quiet] [PETSc options...]
+//   perimorph run CASE [-o DIR] [--quiet] [--restart PATH] [--checkpoint-every N] [PETSc options...]
 //   perimorph ghost-forces CASE --strain ... [-o DIR]
 //   perimorph gc CASE --point X [Y [Z]] --normal NX [NY [NZ]] [--s-crit S]
 //
@@ -112,6 +112,16 @@ int main(int argc, char** argv) {
   run_cmd->add_option("CASE", case_path, "Case file (TOML)")->required();
   run_cmd->add_option("-o,--output", out_dir, "Output directory (default: the case's [output] directory)");
   run_cmd->add_flag("-q,--quiet", quiet, "No progress line and no summary");
+  std::string restart;
+  int checkpoint_every = -1;
+  run_cmd->add_option("--restart", restart,
+                      "Continue a run from its checkpoint: a BASENAME.checkpoint file, or the output directory "
+                      "holding it (the same case file; docs/output.md, Restart)");
+  run_cmd
+      ->add_option("--checkpoint-every", checkpoint_every,
+                   "Write BASENAME.checkpoint every N increments (overrides [output] checkpoint_every; 0: only "
+                   "when stopped by SIGINT/SIGTERM)")
+      ->check(CLI::NonNegativeNumber);
   run_cmd->footer(
       "PETSc options follow the case file: every word of the form -name (a dash and two or more characters, "
       "e.g. -ksp_type cg, -options_file F, -options_left) is passed to PETSc's options database with the "
@@ -188,7 +198,7 @@ int main(int argc, char** argv) {
     if (*info_cmd) return info(case_path);
     if (*ghost_cmd) return ghost_forces(case_path, strain, out_dir);
     if (*gc_cmd) return gc(case_path, gc_point, gc_normal, gc_s_crit);
-    return run(case_path, out_dir, quiet, args.petsc, start);
+    return run(case_path, out_dir, quiet, args.petsc, start, restart, checkpoint_every);
   } catch (const perimorph::app::OneProcessOnly&) {  // printed where it was found
     return 2;
   } catch (const perimorph::Interrupted& e) {

@@ -77,6 +77,14 @@ AlphaField AlphaField::regions(std::vector<Region> regions, int dim) {
   return f;
 }
 
+AlphaField AlphaField::exactly(double constant, int dim, std::vector<Region> regions) {
+  AlphaField f;
+  f.constant_ = constant;
+  f.dim_ = dim;
+  f.regions_ = std::move(regions);
+  return f;
+}
+
 AlphaField AlphaField::grown(std::vector<Region> added, int dim) const {
   PERIMORPH_ASSERT(!is_constant() || constant_ == 0.0, "a constant alpha > 0 cannot grow by regions");
   if (added.empty()) return *this;

@@ -68,6 +68,9 @@ class AlphaField {
   /// α = max over the regions (0 outside all of them).
   static AlphaField regions(std::vector<Region> regions, int dim);
 
+  /// A field exactly as region_list(), dim() and constant_value() describe it
+  /// (normals and axes taken as they are: a checkpoint, run/checkpoint.hpp).
+  static AlphaField exactly(double constant, int dim, std::vector<Region> regions);
   /// This field with `added` regions joined (pointwise max): α never
   /// decreases (THEORY §5, adaptive zone). α ≡ 0 grows into the regions; a
   /// constant α > 0 cannot grow (an error).

@@ -42,6 +42,11 @@ class BrokenBonds {
   std::size_t size() const { return count_; }
   bool empty() const { return count_ == 0; }
   int points_per_cell() const { return n_; }
+  /// The bond's cells and points exist in this set's model.
+  bool valid(const BondId& b) const {
+    const auto cells = static_cast<Index>(by_cell_.size());
+    return b.e >= 0 && b.e < cells && b.f >= 0 && b.f < cells && b.g >= 0 && b.g < n_ && b.h >= 0 && b.h < n_;
+  }
 
  private:
   int n_ = 0;

@@ -207,6 +207,9 @@ struct OutputSpec {
   bool vtu = true;
   int every = 1;              ///< write VTU every n increments (and always the last)
   bool failed_bonds = false;  ///< fracture runs: BASENAME_failed_bonds.csv, one row per failed bond
+  /// BASENAME.checkpoint every n increments (0: only when the run is stopped
+  /// by SIGINT/SIGTERM between increments); run/checkpoint.hpp.
+  int checkpoint_every = 0;
 };
 
 enum class KernelKind { constant, conical, exponential, gaussian, pmb };
@@ -349,6 +352,7 @@ struct DamageSolverSpec {
 
 struct CaseConfig {
   std::string path;   ///< the case file as given
+  std::string text;   ///< its text as parsed (a restart compares it, casefile/case_values.hpp)
   std::string title;  ///< optional [case] title
   MeshSpec mesh;
   std::vector<RegionSpec> regions;

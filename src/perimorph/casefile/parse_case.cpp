@@ -342,6 +342,7 @@ CaseConfig parse_case_string(std::string_view toml_text, const std::string& pret
                    "loading", "solver", "output", "nonlocal", "alpha", "fracture", "adaptivity", "damage"});
   CaseConfig c;
   c.path = pretend_path;
+  c.text = std::string(toml_text);
   read_case(root, c);
   read_mesh(root, c);
   read_regions(root, c);

@@ -82,7 +82,7 @@ void read_output(const Table& root, CaseConfig& c) {
   c.output.basename = stem.empty() ? "case" : stem;
   const auto t = root.table("output");
   if (!t) return;
-  t->check_keys({"directory", "basename", "vtu", "every", "failed_bonds"});
+  t->check_keys({"directory", "basename", "vtu", "every", "failed_bonds", "checkpoint_every"});
   if (auto v = t->get("directory")) c.output.directory = v->name();
   if (auto v = t->get("basename")) {
     c.output.basename = v->name();
@@ -94,6 +94,7 @@ void read_output(const Table& root, CaseConfig& c) {
   if (auto v = t->get("vtu")) c.output.vtu = v->boolean();
   if (auto v = t->get("every")) c.output.every = v->integer(1, kMaxInt);
   if (auto v = t->get("failed_bonds")) c.output.failed_bonds = v->boolean();
+  if (auto v = t->get("checkpoint_every")) c.output.checkpoint_every = v->integer(0, kMaxInt);
 }
 
 }  // namespace perimorph::casefile::detail

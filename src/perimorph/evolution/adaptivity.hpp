@@ -52,6 +52,10 @@ class Adaptivity final : public Component {
   /// Joins the proposed balls to the state's α; Effect::rebuild.
   Effect apply(RunState& state, system::ConstrainedSystem& system) override;
   void rebind(const setup::Discretization& disc, RunState& state, system::ConstrainedSystem& system) override;
+  /// The balls, the seeded cells and how far the failed bonds were read
+  /// (adaptivity.cpp).
+  void save(core::BinaryWriter& out) const override;
+  void restore(const setup::Discretization& disc, core::BinaryReader& in) override;
 
   /// Lets the next inspect (that one only) grow α from the failed bonds
   /// (update = "increment": the run calls it when an increment has settled).

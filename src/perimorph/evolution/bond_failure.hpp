@@ -58,6 +58,8 @@ class BondFailure final : public Component {
               system::ConstrainedSystem& /*system*/) override {
     disc_ = &disc;
   }
+  /// Nothing is kept between increments but the discretization.
+  void restore(const setup::Discretization& disc, core::BinaryReader& /*in*/) override { disc_ = &disc; }
 
   /// The bonds proposed by the last inspect (what the last apply broke).
   const std::vector<assembly::StretchedBond>& proposed() const { return proposed_; }

@@ -12,6 +12,11 @@
 #include <cstddef>
 #include <string_view>
 
+namespace perimorph::core {
+class BinaryWriter;
+class BinaryReader;
+}  // namespace perimorph::core
+
 namespace perimorph::evolution {
 
 /// What an applied proposal changed in the constrained system, from the
@@ -51,6 +56,14 @@ class Component {
   /// nothing that depends on the discretization.
   virtual void rebind(const setup::Discretization& /*disc*/, RunState& /*state*/,
                       system::ConstrainedSystem& /*system*/) {}
+  /// Writes what the component keeps from one increment to the next (a
+  /// checkpoint, run/checkpoint.hpp; called between increments, with no
+  /// proposal pending). The default keeps nothing.
+  virtual void save(core::BinaryWriter& /*out*/) const {}
+  /// Takes back what save wrote, on a run restored onto `disc` whose state and
+  /// system are restored as they were (nothing to hold or reassemble). A
+  /// component that keeps `disc` or anything else overrides it.
+  virtual void restore(const setup::Discretization& /*disc*/, core::BinaryReader& /*in*/) {}
 };
 
 }  // namespace perimorph::evolution

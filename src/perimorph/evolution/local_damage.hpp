@@ -46,6 +46,9 @@ class LocalDamage final : public Component {
               system::ConstrainedSystem& /*system*/) override {
     disc_ = &disc;
   }
+  /// The Newton counters and the last change (local_damage_checkpoint.cpp).
+  void save(core::BinaryWriter& out) const override;
+  void restore(const setup::Discretization& disc, core::BinaryReader& in) override;
 
   /// Newton steps taken and Newton solves that did not converge, over the run.
   int newton_steps() const { return newton_steps_; }

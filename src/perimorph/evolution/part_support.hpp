@@ -39,6 +39,9 @@ class PartSupport final : public Component {
   /// motions inside the cells of failed bonds, found anew on the whole model;
   /// the state's held dofs become these (counts kept).
   void rebind(const setup::Discretization& disc, RunState& state, system::ConstrainedSystem& system) override;
+  /// The held dofs and parts found so far, how far the failures were read.
+  void save(core::BinaryWriter& out) const override;
+  void restore(const setup::Discretization& disc, core::BinaryReader& in) override;
 
  private:
   const setup::Discretization* disc_;  ///< non-owning: the run's current discretization

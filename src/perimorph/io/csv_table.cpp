@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <iterator>
 #include <stdexcept>
 #include <string_view>
@@ -26,6 +27,16 @@ std::string csv_quote(std::string_view s) {
   return r;
 }
 
+std::string header_line(const std::vector<std::string>& columns) {
+  std::string header;
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    if (i > 0) header += ',';
+    header += csv_quote(columns[i]);
+  }
+  header += '\n';
+  return header;
+}
+
 }  // namespace
 
 CsvTable::CsvTable(std::string path, std::vector<std::string> columns)
@@ -33,15 +44,36 @@ CsvTable::CsvTable(std::string path, std::vector<std::string> columns)
   if (columns_.empty()) throw std::logic_error(fmt::format("CsvTable '{}': no columns", path_));
   file_.open(path_, std::ios::binary | std::ios::trunc);
   if (!file_) throw Error(fmt::format("cannot open '{}' for writing: {}", path_, std::strerror(errno)));
-  std::string header;
-  for (std::size_t i = 0; i < columns_.size(); ++i) {
-    if (i > 0) header += ',';
-    header += csv_quote(columns_[i]);
-  }
-  header += '\n';
+  const std::string header = header_line(columns_);
   file_.write(header.data(), static_cast<std::streamsize>(header.size()));
   file_.flush();
   if (!file_) throw Error(fmt::format("error while writing '{}'", path_));
+}
+
+CsvTable::CsvTable(std::string path, std::vector<std::string> columns, std::size_t keep_rows)
+    : path_(std::move(path)), columns_(std::move(columns)), rows_(keep_rows) {
+  if (columns_.empty()) throw std::logic_error(fmt::format("CsvTable '{}': no columns", path_));
+  std::ifstream in(path_, std::ios::binary);
+  if (!in) throw Error(fmt::format("cannot continue '{}': {}", path_, std::strerror(errno)));
+  const std::string header = header_line(columns_);
+  std::string line;
+  std::getline(in, line);
+  if (line + '\n' != header)
+    throw Error(fmt::format("cannot continue '{}': its columns are not this run's (a file of another case?)",
+                            path_));
+  std::size_t end = header.size();
+  for (std::size_t r = 0; r < keep_rows; ++r) {
+    if (!std::getline(in, line) || in.eof())
+      throw Error(fmt::format("cannot continue '{}': it has {} complete rows, the checkpoint needs {}",
+                              path_, r, keep_rows));
+    end += line.size() + 1;
+  }
+  in.close();
+  std::error_code ec;
+  std::filesystem::resize_file(path_, end, ec);
+  if (ec) throw Error(fmt::format("cannot continue '{}': {}", path_, ec.message()));
+  file_.open(path_, std::ios::binary | std::ios::app);
+  if (!file_) throw Error(fmt::format("cannot open '{}' for writing: {}", path_, std::strerror(errno)));
 }
 
 void CsvTable::add_row(const std::vector<double>& row) {

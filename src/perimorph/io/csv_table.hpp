@@ -16,6 +16,11 @@ class CsvTable {
   /// break is quoted RFC 4180 style. Throws std::logic_error if `columns` is
   /// empty, perimorph::Error if the file cannot be opened.
   CsvTable(std::string path, std::vector<std::string> columns);
+  /// Continues the table at `path` after its first `keep_rows` rows (a
+  /// restarted run, run/checkpoint.hpp): the rows after them are cut off, and
+  /// add_row appends. Throws perimorph::Error naming the file if it cannot be
+  /// read, its header is not `columns`, or it has fewer rows.
+  CsvTable(std::string path, std::vector<std::string> columns, std::size_t keep_rows);
 
   /// Appends one row and flushes it. Values are written in shortest
   /// round-trip form (parsing the text gives back the same double; non-finite

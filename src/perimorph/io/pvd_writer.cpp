@@ -18,6 +18,11 @@ PvdCollection::PvdCollection(std::string path) : path_(std::move(path)) {
   rewrite();
 }
 
+PvdCollection::PvdCollection(std::string path, std::vector<Entry> entries)
+    : path_(std::move(path)), entries_(std::move(entries)) {
+  rewrite();
+}
+
 void PvdCollection::add(double time, const std::string& vtu_relative_path) {
   if (!std::isfinite(time))
     throw std::logic_error(fmt::format("PvdCollection::add: time {} is not finite", time));

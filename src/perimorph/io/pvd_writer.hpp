@@ -13,6 +13,14 @@ class PvdCollection {
   /// Throws perimorph::Error if the file cannot be written.
   explicit PvdCollection(std::string path);
 
+  struct Entry {
+    double time;
+    std::string file;
+  };
+  /// A collection continued (a restarted run, run/checkpoint.hpp): rewrites
+  /// `path` with `entries`, the ones the run had written up to its checkpoint.
+  PvdCollection(std::string path, std::vector<Entry> entries);
+
   /// Appends a DataSet entry (timestep = time, file = vtu_relative_path) and
   /// rewrites the whole .pvd file, via a temporary file renamed into place, so
   /// an interrupted run still leaves a valid collection listing every step
@@ -25,11 +33,9 @@ class PvdCollection {
   const std::string& path() const { return path_; }
   std::size_t size() const { return entries_.size(); }
 
+  const std::vector<Entry>& entries() const { return entries_; }
+
  private:
-  struct Entry {
-    double time;
-    std::string file;
-  };
   void rewrite() const;
 
   std::string path_;

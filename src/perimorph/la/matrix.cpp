@@ -1,5 +1,6 @@
 #include "perimorph/la/matrix.hpp"
 
+#include "perimorph/core/error.hpp"
 #include "perimorph/la/petsc_check.hpp"
 
 #include <petscmat.h>
@@ -298,6 +299,44 @@ void Matrix::visit_rows(
     visit(r, {cols, static_cast<std::size_t>(ncols)}, {vals, static_cast<std::size_t>(ncols)});
     PM_PETSC(MatRestoreRow(m_, r, &ncols, &cols, &vals));
   }
+}
+
+assembly::SparsityPattern Matrix::block_pattern() const {
+  release_view();
+  PetscInt bs = 1;
+  PM_PETSC(MatGetBlockSize(m_, &bs));
+  const Index n = rows();
+  assembly::SparsityPattern pattern;
+  pattern.block_size = static_cast<int>(bs);
+  pattern.row_offsets.assign(1, 0);
+  for (Index r = 0; r < n; r += bs) {
+    PetscInt ncols = 0;
+    const PetscInt* cols = nullptr;
+    PM_PETSC(MatGetRow(m_, r, &ncols, &cols, nullptr));
+    for (PetscInt j = 0; j < ncols; j += bs) pattern.columns.push_back(cols[j] / bs);
+    PM_PETSC(MatRestoreRow(m_, r, &ncols, &cols, nullptr));
+    pattern.row_offsets.push_back(static_cast<Index>(pattern.columns.size()));
+  }
+  return pattern;
+}
+
+std::vector<double> Matrix::values() const {
+  std::vector<double> out;
+  out.reserve(static_cast<std::size_t>(nonzeros()));
+  visit_rows([&](Index, std::span<const Index>, std::span<const double> v) { out.insert(out.end(), v.begin(), v.end()); });
+  return out;
+}
+
+void Matrix::set_values(std::span<const double> values) {
+  release_view();
+  if (static_cast<double>(values.size()) != nonzeros())
+    throw Error(fmt::format("set_values: {} values for a matrix with {} stored entries", values.size(),
+                            nonzeros()));
+  if (!is_seqaij(m_)) throw Error("set_values: only on one process (MATSEQAIJ)");
+  PetscScalar* v = nullptr;
+  PM_PETSC(MatSeqAIJGetArray(m_, &v));
+  std::copy(values.begin(), values.end(), v);
+  PM_PETSC(MatSeqAIJRestoreArray(m_, &v));
 }
 
 Eigen::MatrixXd Matrix::to_dense() const {

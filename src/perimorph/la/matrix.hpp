@@ -69,6 +69,15 @@ class Matrix final : public assembly::MatrixInserter {
   /// during the call.
   void visit_rows(
       const std::function<void(Index, std::span<const Index>, std::span<const double>)>& visit) const;
+  /// The stored structure as a block pattern (the matrix's block size; every
+  /// row of a block row has the same block columns, as Matrix(pattern) and
+  /// without_zero_blocks make them), and the stored values in row order: with
+  /// Matrix(pattern) and set_values, an exact copy (a checkpoint, run/checkpoint.hpp).
+  assembly::SparsityPattern block_pattern() const;
+  std::vector<double> values() const;
+  /// Overwrites the stored values (row order, as values() gives them) of a
+  /// finalized matrix; throws Error if their number differs.
+  void set_values(std::span<const double> values);
   /// Dense copy, for tests on tiny matrices.
   Eigen::MatrixXd to_dense() const;
   /// Marks the matrix symmetric positive definite (after finalize).

@@ -4,6 +4,7 @@
 #include "perimorph/core/interrupt.hpp"
 #include "perimorph/io/progress.hpp"
 #include "perimorph/la/petsc_session.hpp"
+#include "perimorph/run/checkpoint.hpp"
 #include "perimorph/system/stiffness.hpp"
 
 #include <fmt/format.h>
@@ -15,11 +16,6 @@
 namespace perimorph::run {
 
 namespace {
-
-std::string basename_of(const casefile::CaseConfig& config) {
-  if (!config.output.basename.empty()) return config.output.basename;
-  return std::filesystem::path(config.path).stem().string();
-}
 
 std::vector<Vec3> sum_reactions(const std::vector<setup::ReactionSet>& sets, std::span<const double> r,
                                 int dim) {
@@ -56,8 +52,33 @@ QuasiStaticRun::QuasiStaticRun(const setup::Discretization& disc, const RunOptio
   progress_ = options.progress ? options.progress : own_progress_.get();
   la::add_options(config.solver.petsc_options);
 
-  progress_->phase("loads");
-  setup_ = prepare_run(disc);
+  checkpoint_every_ = options.checkpoint_every >= 0 ? options.checkpoint_every : config.output.checkpoint_every;
+  summary_.output_directory = resolve_output_directory(config, options);
+  checkpoint_path_ = checkpoint_path(summary_.output_directory, basename_of(config));
+  if (!options.restart.empty()) {
+    restore(find_checkpoint(options.restart, basename_of(config)), options);
+  } else {
+    progress_->phase("loads");
+    setup_ = prepare_run(disc);
+    find_components();
+
+    progress_->phase("assembly");
+    system::AssembledStiffness assembled = system::assemble_stiffness(disc);
+
+    progress_->phase("solver set-up");
+    system_ = std::make_unique<system::ConstrainedSystem>(disc, std::move(assembled.K), std::move(setup_.bc),
+                                                          setup_.F);
+    for (const auto& s : setup_.sets) summary_.reaction_names.push_back(s.name);
+    output_ = std::make_unique<RunOutput>(disc, summary_.output_directory, basename_of(config),
+                                          summary_.reaction_names);
+  }
+  system_->attach_solver();
+  summary_.csv_path = output_->csv_path();
+  summary_.pvd_path = config.output.vtu ? output_->pvd_path() : "";
+  progress_->start_increments();
+}
+
+void QuasiStaticRun::find_components() {
   for (auto& c : setup_.components)
     if (auto* f = dynamic_cast<evolution::BondFailure*>(c.get()))
       fracture_ = f;
@@ -65,30 +86,20 @@ QuasiStaticRun::QuasiStaticRun(const setup::Discretization& disc, const RunOptio
       adaptivity_ = a;
     else if (auto* d = dynamic_cast<evolution::LocalDamage*>(c.get()))
       damage_ = d;
-
-  progress_->phase("assembly");
-  system::AssembledStiffness assembled = system::assemble_stiffness(disc);
-
-  progress_->phase("solver set-up");
-  system_ = std::make_unique<system::ConstrainedSystem>(disc, std::move(assembled.K), std::move(setup_.bc),
-                                                        setup_.F);
-  system_->attach_solver();
-
-  for (const auto& s : setup_.sets) summary_.reaction_names.push_back(s.name);
-  summary_.output_directory = resolve_output_directory(config, options);
-  output_ = std::make_unique<RunOutput>(disc, summary_.output_directory, basename_of(config),
-                                        summary_.reaction_names);
-  summary_.csv_path = output_->csv_path();
-  summary_.pvd_path = config.output.vtu ? output_->pvd_path() : "";
-  progress_->start_increments();
 }
 
 QuasiStaticRun::~QuasiStaticRun() = default;
 
 std::string QuasiStaticRun::kept() const {
   const int done = state_.increment - 1;
-  return done == 0 ? fmt::format("No increment completed (output directory {})", summary_.output_directory)
-                   : fmt::format("Results of increments 1..{} are in {}", done, summary_.output_directory);
+  std::string out =
+      done == 0 ? fmt::format("No increment completed (output directory {})", summary_.output_directory)
+                : fmt::format("Results of increments 1..{} are in {}", done, summary_.output_directory);
+  if (!summary_.checkpoint_path.empty())
+    out += fmt::format(". The checkpoint of increment {} is {}: continue with perimorph run {} --restart {}",
+                       summary_.checkpoint_increment, summary_.checkpoint_path, disc_->config.path,
+                       summary_.checkpoint_path);
+  return out;
 }
 
 void QuasiStaticRun::apply_load(int i) {
@@ -242,11 +253,27 @@ void QuasiStaticRun::stop_if_asked() {
   const int signal = stop_requested();
   if (signal == 0) return;
   progress_->finish();
+  const int i = state_.increment;
+  // Before the first solve of an increment the state is still that of the
+  // last one: it can be kept as a checkpoint.
+  std::string saved;
+  if (rec_.break_iterations == 0 && i > 1 && summary_.checkpoint_increment != i - 1) {
+    const double lambda = state_.load_factor;
+    state_.increment = i - 1;
+    state_.load_factor = disc_->config.loading.factors[static_cast<std::size_t>(i - 2)];
+    try {
+      save_checkpoint();
+    } catch (const Error& e) {
+      saved = fmt::format(" The checkpoint could not be written: {}.", e.what());
+    }
+    state_.increment = i;
+    state_.load_factor = lambda;
+  }
   throw Interrupted(
       fmt::format("{} received: the run stops in increment {}/{} (load factor {}) before its solve "
-                  "{}; that increment is not written. {}",
-                  signal_name(signal), state_.increment, increments(), state_.load_factor,
-                  rec_.break_iterations + 1, kept()),
+                  "{}; that increment is not written. {}{}",
+                  signal_name(signal), i, increments(), state_.load_factor, rec_.break_iterations + 1, kept(),
+                  saved),
       signal);
 }
 

@@ -26,6 +26,9 @@ class ProgressLine;
 
 namespace perimorph::run {
 
+/// The case's [output] basename, or its file's stem.
+std::string basename_of(const casefile::CaseConfig& config);
+
 class QuasiStaticRun {
  public:
   /// Constraints and loads first (a case error stops the run before the
@@ -34,6 +37,9 @@ class QuasiStaticRun {
   ~QuasiStaticRun();
 
   int increments() const { return static_cast<int>(disc_->config.loading.factors.size()); }
+  /// The first increment to compute (0-based): 0, or the one after a restored
+  /// checkpoint's.
+  int first_increment() const { return summary_.restarted_after; }
   /// Starts increment i (0-based) at its load factor.
   void apply_load(int i);
   /// Solves at the state's load factor and adds the work of the step to the
@@ -62,13 +68,24 @@ class QuasiStaticRun {
   /// The increment's CSV row, its VTU (every [output] every, and the last),
   /// the progress line.
   void write_increment();
+  /// Writes the checkpoint (run/checkpoint.hpp) after every [output]
+  /// checkpoint_every increments; call it once the increment is written and α
+  /// has grown for the next one.
+  void checkpoint_if_due();
   RunSummary finish();
 
  private:
   /// The CSV row (and VTU when due or `force_vtu`) of the state reached.
   void record(bool force_vtu);
-  /// "Results of increments 1..N are in DIR" for messages.
+  /// "Results of increments 1..N are in DIR" for messages (and the checkpoint, if any).
   std::string kept() const;
+  /// Writes the checkpoint of the state (that of a completed increment) and
+  /// remembers it (quasi_static_checkpoint.cpp).
+  void save_checkpoint();
+  /// The run as the checkpoint `path` holds it, onto the caller's `disc` (or
+  /// one rebuilt for the checkpoint's α): state, components, system, output
+  /// position. Throws InputError for a checkpoint of another case or version.
+  void restore(const std::string& path, const RunOptions& options);
   [[noreturn]] void stop_unsettled(std::size_t over);
   /// The damage still moves after [damage] max_iterations updates.
   [[noreturn]] void stop_damage_unsettled();
@@ -78,6 +95,8 @@ class QuasiStaticRun {
   /// solves: Interrupted, naming the increment and what is written.
   void stop_if_asked();
   [[noreturn]] void stop_unsupported(const std::exception& e);
+  /// Finds the bond-failure, adaptivity and damage components among setup_'s.
+  void find_components();
   void warn_unused_options();
   /// Lets the adaptivity component grow α now; true if it did (and the run
   /// moved to the grown model).
@@ -113,6 +132,8 @@ class QuasiStaticRun {
   std::size_t failed_before_ = 0;
   double dissipated_before_ = 0.0;
   bool options_checked_ = false;
+  int checkpoint_every_ = 0;
+  std::string checkpoint_path_;  ///< where save_checkpoint writes
   RunSummary summary_;
 };
 

@@ -41,7 +41,7 @@ io::VtkCell vtk_cell(int dim) {
 }  // namespace
 
 RunOutput::RunOutput(const setup::Discretization& model, std::string directory, std::string basename,
-                     std::vector<std::string> reaction_names)
+                     std::vector<std::string> reaction_names, const OutputPosition* resume)
     : directory_(std::move(directory)),
       basename_(std::move(basename)),
       dim_(model.dim()),
@@ -73,24 +73,43 @@ RunOutput::RunOutput(const setup::Discretization& model, std::string directory, 
     for (const char* c :
          {"dofs", "dg_cells", "nonlocal_cells", "alpha_balls", "model_energy_change", "remodel_time"})
       columns.emplace_back(c);
-  csv_ = std::make_unique<io::CsvTable>(csv_path(), std::move(columns));
+  auto table = [&](std::string path, std::vector<std::string> cols, std::size_t OutputPosition::*rows) {
+    return resume ? std::make_unique<io::CsvTable>(std::move(path), std::move(cols), resume->*rows)
+                  : std::make_unique<io::CsvTable>(std::move(path), std::move(cols));
+  };
+  csv_ = table(csv_path(), std::move(columns), &OutputPosition::rows);
   if (adaptive_)
-    alpha_csv_ = std::make_unique<io::CsvTable>(
+    alpha_csv_ = table(
         (std::filesystem::path(directory_) / (basename_ + "_alpha.csv")).string(),
         std::vector<std::string>{"increment", "cell", "x", "y", "z", "radius", "transition", "predicted",
-                                 "critical_damage"});
+                                 "critical_damage"},
+        &OutputPosition::alpha_rows);
   if (fracture_)
-    failures_csv_ = std::make_unique<io::CsvTable>(
+    failures_csv_ = table(
         failures_csv_path(),
         std::vector<std::string>{"increment", "iteration", "bonds_failed", "dissipated_energy",
                                  "overshoot_energy", "max_stretch_ratio", "solver_iterations",
-                                 "preconditioner_rebuilt", "wall_time"});
+                                 "preconditioner_rebuilt", "wall_time"},
+        &OutputPosition::failure_rows);
   if (fracture_ && model.config.output.failed_bonds)
-    failed_bonds_csv_ = std::make_unique<io::CsvTable>(
+    failed_bonds_csv_ = table(
         (std::filesystem::path(directory_) / (basename_ + "_failed_bonds.csv")).string(),
         std::vector<std::string>{"increment", "iteration", "xg", "yg", "zg", "xh", "yh", "zh", "stretch",
-                                 "dissipated_energy", "overshoot_energy"});
-  if (model.config.output.vtu) pvd_ = std::make_unique<io::PvdCollection>(pvd_path());
+                                 "dissipated_energy", "overshoot_energy"},
+        &OutputPosition::failed_bond_rows);
+  if (model.config.output.vtu)
+    pvd_ = resume ? std::make_unique<io::PvdCollection>(pvd_path(), resume->pvd)
+                  : std::make_unique<io::PvdCollection>(pvd_path());
+}
+
+OutputPosition RunOutput::position() const {
+  OutputPosition p;
+  p.rows = csv_->rows();
+  if (alpha_csv_) p.alpha_rows = alpha_csv_->rows();
+  if (failures_csv_) p.failure_rows = failures_csv_->rows();
+  if (failed_bonds_csv_) p.failed_bond_rows = failed_bonds_csv_->rows();
+  if (pvd_) p.pvd = pvd_->entries();
+  return p;
 }
 
 std::string RunOutput::csv_path() const {

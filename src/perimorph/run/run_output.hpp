@@ -55,12 +55,21 @@ struct IncrementRecord {
   double max_damage = 0.0;          ///< largest d
 };
 
+/// How far a run's output had got (a checkpoint, run/checkpoint.hpp): the
+/// rows of each table and the PVD's entries.
+struct OutputPosition {
+  std::size_t rows = 0, alpha_rows = 0, failure_rows = 0, failed_bond_rows = 0;
+  std::vector<io::PvdCollection::Entry> pvd;
+};
+
 class RunOutput {
  public:
   /// Creates `directory` (and parents). Files: BASENAME.csv, BASENAME.pvd,
-  /// BASENAME_NNNN.vtu.
+  /// BASENAME_NNNN.vtu. With `resume`, continues the files there after that
+  /// position (later rows are cut off; io::CsvTable) instead of starting them.
   RunOutput(const setup::Discretization& model, std::string directory, std::string basename,
-            std::vector<std::string> reaction_names);
+            std::vector<std::string> reaction_names, const OutputPosition* resume = nullptr);
+  OutputPosition position() const;
 
   void write_increment_vtu(const setup::Discretization& model, int increment, double load_factor,
                            std::span<const double> u, const evolution::FractureFields& fracture = {},

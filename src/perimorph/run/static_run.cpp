@@ -38,7 +38,7 @@ RunSetup prepare_run(const setup::Discretization& disc) {
 
 RunSummary run_static(const setup::Discretization& disc, const RunOptions& options) {
   QuasiStaticRun run(disc, options);
-  for (int i = 0; i < run.increments(); ++i) {
+  for (int i = run.first_increment(); i < run.increments(); ++i) {
     run.apply_load(i);
     run.solve();
     // THEORY §5–§6: update the damage, break the bonds over the criterion (and
@@ -54,6 +54,7 @@ RunSummary run_static(const setup::Discretization& disc, const RunOptions& optio
     }
     run.write_increment();
     run.adapt_for_next();
+    run.checkpoint_if_due();
   }
   return run.finish();
 }

@@ -29,6 +29,11 @@ struct RunOptions {
   /// before the run, so that its elapsed time counts from the program's
   /// start); null: the run draws its own (unless quiet). Warnings go to it.
   io::ProgressLine* progress = nullptr;
+  /// Continue the run from this checkpoint (a BASENAME.checkpoint file, or the
+  /// output directory holding it; run/checkpoint.hpp) instead of starting it.
+  std::string restart = {};
+  /// Overrides [output] checkpoint_every when ≥ 0.
+  int checkpoint_every = -1;
 };
 
 /// What a run needs besides the stiffness, built from the case before any
@@ -48,6 +53,11 @@ RunSetup prepare_run(const setup::Discretization& model);
 
 struct RunSummary {
   int increments_done = 0;
+  /// The increment a restarted run continued after (its checkpoint's); 0 for a fresh run.
+  int restarted_after = 0;
+  /// The last checkpoint written by this run ("" if none) and its increment.
+  std::string checkpoint_path;
+  int checkpoint_increment = 0;
   std::vector<double> displacement;  ///< last solution (dof vector)
   std::vector<std::string> reaction_names;
   std::vector<Vec3> reactions;  ///< last increment, per reaction set
@@ -83,6 +93,8 @@ std::string resolve_output_directory(const casefile::CaseConfig& config, const R
 /// before stays on disk. With [fracture], an increment that still breaks bonds
 /// after max_iterations iterations stops the run (Error): its state after the
 /// last iteration is written (CSV row and VTU) and the message names the files.
+/// With options.restart, continues a checkpointed run of the same case from
+/// the increment after its checkpoint (run/checkpoint.hpp).
 RunSummary run_static(const setup::Discretization& model, const RunOptions& options);
 
 }  // namespace perimorph::run

@@ -21,6 +21,10 @@
 namespace perimorph::bonds {
 class BrokenBonds;
 }
+namespace perimorph::core {
+class BinaryWriter;
+class BinaryReader;
+}
 
 namespace perimorph::system {
 
@@ -30,6 +34,16 @@ class ConstrainedSystem {
   /// `F` at load factor 1. No solver yet (attach_solver).
   ConstrainedSystem(const setup::Discretization& model, la::Matrix K, setup::DirichletData bc,
                     std::span<const double> F);
+
+  /// A system as `save` wrote it (a checkpoint, run/checkpoint.hpp): K, A,
+  /// rhs_unit, the reference diagonal and the downdate count exactly as they
+  /// were (every downdate, spring and reassembly since the first assembly is
+  /// in them), on `model` with its constraints `bc` and loads `F`. No solver
+  /// yet. Throws Error (naming the checkpoint) if they do not fit `model`.
+  static std::unique_ptr<ConstrainedSystem> restored(const setup::Discretization& model,
+                                                     setup::DirichletData bc, std::span<const double> F,
+                                                     core::BinaryReader& in);
+  void save(core::BinaryWriter& out) const;
 
   /// The case's solver ([solver] rtol, max_iterations; PETSc options from the
   /// options database) on A, with the rigid-body near-null space of the nodes.

@@ -1,0 +1,90 @@
+#pragma once
+// A byte buffer for checkpoints (run/checkpoint.hpp): plain values, vectors
+// and strings written in the machine's representation, read back exactly
+// (a double's bits are kept). The reader checks every length against what is
+// left and throws Error naming its source on a short or corrupt buffer.
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace perimorph::core {
+
+class BinaryWriter {
+ public:
+  template <class T>
+  void put(const T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const auto* p = reinterpret_cast<const char*>(&value);
+    bytes_.append(p, sizeof(T));
+  }
+  template <class T>
+  void put_vector(const std::vector<T>& values) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    put<std::uint64_t>(values.size());
+    bytes_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+  }
+  void put_string(std::string_view s) {
+    put<std::uint64_t>(s.size());
+    bytes_.append(s.data(), s.size());
+  }
+  /// A section tag, checked by BinaryReader::expect: a reader that drifts
+  /// out of step with the writer stops at the next tag.
+  void tag(std::string_view name) { put_string(name); }
+  const std::string& bytes() const { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+class BinaryReader {
+ public:
+  /// Reads `bytes` (not copied: it must outlive the reader); `source` names
+  /// it in errors.
+  BinaryReader(std::string_view bytes, std::string source) : bytes_(bytes), source_(std::move(source)) {}
+
+  template <class T>
+  T get() {
+    static_assert(std::is_trivially_copyable_v<T>);
+    T value;
+    std::memcpy(&value, take(sizeof(T)), sizeof(T));
+    return value;
+  }
+  template <class T>
+  std::vector<T> get_vector() {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const auto n = get<std::uint64_t>();
+    if (n > (bytes_.size() - pos_) / sizeof(T)) fail("a list longer than the file");
+    std::vector<T> values(n);
+    if (n > 0) std::memcpy(values.data(), take(n * sizeof(T)), n * sizeof(T));
+    return values;
+  }
+  std::string get_string() {
+    const auto n = get<std::uint64_t>();
+    if (n > bytes_.size() - pos_) fail("a text longer than the file");
+    return std::string(take(n), n);
+  }
+  /// Reads a tag written by BinaryWriter::tag and checks it is `name`.
+  void expect(std::string_view name);
+  bool at_end() const { return pos_ == bytes_.size(); }
+  const std::string& source() const { return source_; }
+  /// Throws Error: "SOURCE: corrupt or truncated checkpoint (WHAT)".
+  [[noreturn]] void fail(std::string_view what) const;
+
+ private:
+  const char* take(std::size_t n) {
+    if (n > bytes_.size() - pos_) fail("it ends early");
+    const char* p = bytes_.data() + pos_;
+    pos_ += n;
+    return p;
+  }
+  std::string_view bytes_;
+  std::size_t pos_ = 0;
+  std::string source_;
+};
+
+}  // namespace perimorph::core

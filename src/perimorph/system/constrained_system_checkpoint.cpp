@@ -1,0 +1,75 @@
+// ConstrainedSystem::save and ::restored (constrained_system.hpp): the system
+// of a checkpoint, bit for bit.
+
+#include "perimorph/core/binary_stream.hpp"
+#include "perimorph/system/constrained_system.hpp"
+
+#include <fmt/format.h>
+
+namespace perimorph::system {
+
+namespace {
+
+void save_matrix(core::BinaryWriter& out, const la::Matrix& M) {
+  const assembly::SparsityPattern p = M.block_pattern();
+  out.put<int>(p.block_size);
+  out.put_vector(p.row_offsets);
+  out.put_vector(p.columns);
+  out.put_vector(M.values());
+}
+
+la::Matrix load_matrix(core::BinaryReader& in, Index rows) {
+  assembly::SparsityPattern p;
+  p.block_size = in.get<int>();
+  p.row_offsets = in.get_vector<Index>();
+  p.columns = in.get_vector<Index>();
+  if (p.block_size < 1 || p.row_offsets.empty() || p.num_block_rows() * p.block_size != rows)
+    in.fail(fmt::format("a matrix of {} rows where the model has {} dofs",
+                        p.row_offsets.empty() ? 0 : p.num_block_rows() * p.block_size, rows));
+  if (p.row_offsets.front() != 0 || static_cast<std::size_t>(p.row_offsets.back()) != p.columns.size())
+    in.fail("a matrix pattern that does not add up");
+  for (std::size_t r = 0; r + 1 < p.row_offsets.size(); ++r)
+    if (p.row_offsets[r] > p.row_offsets[r + 1]) in.fail("a matrix pattern that does not add up");
+  for (Index c : p.columns)
+    if (c < 0 || c >= p.num_block_rows()) in.fail("a matrix column out of range");
+  la::Matrix M(p);
+  const std::vector<double> values = in.get_vector<double>();
+  if (values.size() != p.columns.size() * static_cast<std::size_t>(p.block_size * p.block_size))
+    in.fail("matrix values that do not fit its pattern");
+  M.set_values(values);
+  return M;
+}
+
+}  // namespace
+
+void ConstrainedSystem::save(core::BinaryWriter& out) const {
+  out.tag("system");
+  save_matrix(out, K_);
+  save_matrix(out, A_);
+  out.put_vector(rhs_unit_.to_std());
+  out.put_vector(initial_diagonal_);
+  out.put<std::uint64_t>(downdates_);
+  out.put_vector(last_downdated_);
+}
+
+std::unique_ptr<ConstrainedSystem> ConstrainedSystem::restored(const setup::Discretization& model,
+                                                               setup::DirichletData bc, std::span<const double> F,
+                                                               core::BinaryReader& in) {
+  in.expect("system");
+  const Index n = model.dofmap.num_dofs();
+  la::Matrix K = load_matrix(in, n);
+  auto system = std::make_unique<ConstrainedSystem>(model, std::move(K), std::move(bc), F);
+  system->A_ = load_matrix(in, n);
+  system->A_.set_spd();
+  const std::vector<double> rhs = in.get_vector<double>();
+  system->initial_diagonal_ = in.get_vector<double>();
+  if (rhs.size() != static_cast<std::size_t>(n) || system->initial_diagonal_.size() != rhs.size())
+    in.fail(fmt::format("vectors of {} and {} values where the model has {} dofs", rhs.size(),
+                        system->initial_diagonal_.size(), n));
+  system->rhs_unit_.assign(rhs);
+  system->downdates_ = in.get<std::uint64_t>();
+  system->last_downdated_ = in.get_vector<Index>();
+  return system;
+}
+
+}  // namespace perimorph::system
