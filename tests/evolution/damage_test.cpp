@@ -189,32 +189,8 @@ TEST(LocalDamageRun, NewtonIsTheStepIndependentLimitOfTheFixedPointWithFewerUpda
   EXPECT_LT(n48.updates, s48.updates / 4) << "secant " << s48.updates << ", newton " << n48.updates;
 }
 
-/// The plate of pulled_case (2D, gaussian kernel δ = 3h, DG where purely
-/// non-local) with a hole at its centre, α ≡ 0 at the start, damage d_c = 0.2
-/// handing over to the non-local model ([adaptivity]), bonds failing at s_crit.
-casefile::CaseConfig handover_plate(int increments) {
-  auto c = testing::pulled_case(2, {}, 2.5e-3);
-  c.alpha.regions.clear();
-  c.nonlocal.discretization = casefile::Discretization::discontinuous;
-  c.nonlocal.calibration = casefile::CalibrationRule::continuum;  // the hole: no structured grid
-  casefile::HoleSpec hole;
-  hole.shape = HoleShape::disk;
-  hole.center = Vec3(2.0, 1.0, 0.0);
-  hole.radius = 0.3;
-  c.mesh.holes = {hole};
-  // Y far from the hole ≈ 6e-7 at λ = 1 (E = 1, ε̄ = 1e-3).
-  c.materials[0].damage = damage(3e-7, 3e-6, 0.2);
-  c.adaptivity.enabled = true;
-  c.output.failed_bonds = true;
-  for (int i = 1; i <= increments; ++i) c.loading.factors.push_back(1.2 * i / increments);
-  c.solver.rtol = 1e-10;
-  c.solver.petsc_options = "-ksp_type preonly -pc_type cholesky";
-  c.damage.tolerance = 1e-4;  // (CI time: the default 1e-6 takes ~4x the fixed-point iterations)
-  return c;
-}
-
 TEST(LocalDamageRun, HandoverInsertsAlphaOnlyWhereTheDamageIsCriticalAndBreaksBondsOnlyThere) {
-  const auto c = handover_plate(8);
+  const auto c = testing::handover_plate(8);
   const setup::Discretization disc = setup::build_discretization(c);
   const std::string dir = scratch_dir("handover");
   const auto run = run::run_static(disc, {dir, true});
@@ -270,7 +246,7 @@ TEST(LocalDamageRun, OneAndTwoThreadsGiveTheSameRun) {
   // The first six increments of the handover plate: damage, d_c reached, α
   // grown and the model rebuilt (the crack runs at the seventh; the bond
   // failure loop's thread independence is tested in fracture_test.cpp).
-  auto c = handover_plate(8);
+  auto c = testing::handover_plate(8);
   c.loading.factors.resize(6);
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);

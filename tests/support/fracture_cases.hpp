@@ -1,6 +1,7 @@
 #pragma once
 // Test support for the fracture tests: the pulled bar, plate and block of
-// tests/evolution/fracture_test.cpp, and a reader of the run's numeric CSVs.
+// tests/evolution/fracture_test.cpp, the damage handover plate of
+// tests/evolution/damage_test.cpp, and a reader of the run's numeric CSVs.
 
 #include "perimorph/casefile/case_config.hpp"
 #include "support/cases.hpp"
@@ -69,6 +70,34 @@ inline casefile::CaseConfig pulled_case(int dim, std::vector<double> factors, do
   c.fracture.enabled = true;
   c.fracture.s_crit = s_crit;
   c.solver.rtol = 1e-12;
+  return c;
+}
+
+/// The plate of pulled_case (2D, gaussian kernel δ = 3h, DG where purely
+/// non-local) with a hole at its centre, α ≡ 0 at the start, damage d_c = 0.2
+/// handing over to the non-local model ([adaptivity]), bonds failing at s_crit.
+inline casefile::CaseConfig handover_plate(int increments) {
+  auto c = pulled_case(2, {}, 2.5e-3);
+  c.alpha.regions.clear();
+  c.nonlocal.discretization = casefile::Discretization::discontinuous;
+  c.nonlocal.calibration = casefile::CalibrationRule::continuum;  // the hole: no structured grid
+  casefile::HoleSpec hole;
+  hole.shape = HoleShape::disk;
+  hole.center = Vec3(2.0, 1.0, 0.0);
+  hole.radius = 0.3;
+  c.mesh.holes = {hole};
+  // Y far from the hole ≈ 6e-7 at λ = 1 (E = 1, ε̄ = 1e-3).
+  auto& d = c.materials[0].damage;
+  d.enabled = true;
+  d.k0 = 3e-7;
+  d.k1 = 3e-6;
+  d.d_c = 0.2;
+  c.adaptivity.enabled = true;
+  c.output.failed_bonds = true;
+  for (int i = 1; i <= increments; ++i) c.loading.factors.push_back(1.2 * i / increments);
+  c.solver.rtol = 1e-10;
+  c.solver.petsc_options = "-ksp_type preonly -pc_type cholesky";
+  c.damage.tolerance = 1e-4;  // (CI time: the default 1e-6 takes ~4x the fixed-point iterations)
   return c;
 }
 

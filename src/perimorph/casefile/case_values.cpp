@@ -24,7 +24,10 @@ void flatten(const toml::node& node, const std::string& path, Values& out) {
     for (std::size_t k = 0; k < a->size(); ++k) flatten((*a)[k], fmt::format("{}[{}]", path, k + 1), out);
   } else {
     std::ostringstream s;
-    node.visit([&](const auto& v) { s << v; });
+    if (const auto* f = node.as_floating_point())
+      s << fmt::format("{}", f->get());  // shortest round trip: 0.005, not 0.0050000000000000001
+    else
+      node.visit([&](const auto& v) { s << v; });
     out.emplace_back(path, s.str());
   }
 }
