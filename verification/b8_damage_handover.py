@@ -138,7 +138,10 @@ def run(ctx):
     u = u_d * np.arange(1, n_inc + 1) / n_inc
     strain = u / LENGTH
     limit = None if ctx.reduced else ctx.time_limit
-    specs = [RunSpec(f"{model}_h{label[-1]}", case_text(tmpl, cells, n_inc, u_d), timeout=limit)
+    # Full size: a checkpoint after every increment, so that a run stopped by --time-limit (or a machine that
+    # goes away) continues where it was on the next call with the same binary and cache.
+    specs = [RunSpec(f"{model}_h{label[-1]}", case_text(tmpl, cells, n_inc, u_d), timeout=limit,
+                     checkpoint_every=0 if ctx.reduced else 1)
              for label, h, cells in mesh_list for model, tmpl in (("hybrid", T), ("local", L))]
     done = dict(zip([s.name for s in specs], ctx.run_all(specs)))
     res = {}

@@ -55,6 +55,7 @@ class RunSpec:
     output: bool = True
     quiet: bool = True
     timeout: float = None
+    checkpoint_every: int = 0  # run: --checkpoint-every N (not in the key: the results do not depend on it)
 
     def argv(self, case_path, out_dir):
         a = [self.command, case_path]
@@ -62,6 +63,8 @@ class RunSpec:
             a += ["-o", out_dir]
         if self.quiet and self.command == "run":
             a.append("--quiet")
+        if self.checkpoint_every and self.command == "run":
+            a += ["--checkpoint-every", str(self.checkpoint_every)]
         return a + [str(x) for x in self.args]
 
     def key(self, binary_md5):
@@ -157,18 +160,34 @@ class Program:
                 if rec["returncode"] != 124 or rec.get("timeout") == spec.timeout:
                     return RunResult(spec, d, rec["returncode"], rec["stdout"], rec["stderr"], rec["wall_s"],
                                      rec["cpu_s"], tuple(rec["load"]), True)
-            if os.path.isdir(d):
-                shutil.rmtree(d)  # an interrupted run
-            os.makedirs(d)
+            # An interrupted run (its time limit, or the machine gone) that left a checkpoint of this case
+            # continues from it (`run --restart`, bit for bit the uninterrupted run); otherwise it starts over.
+            previous = rec if os.path.isfile(done) else None
             case_path = os.path.join(d, "case.toml")
-            with open(case_path, "w") as f:
-                f.write(spec.case_text)
-            argv = [self.path] + spec.argv(case_path, d)
+            checkpoints = glob.glob(os.path.join(d, "*.checkpoint"))
+            resume = (spec.command == "run" and len(checkpoints) == 1 and os.path.isfile(case_path)
+                      and open(case_path).read() == spec.case_text)
+            if not resume:
+                previous = None
+                if os.path.isdir(d):
+                    shutil.rmtree(d)
+                os.makedirs(d)
+                with open(case_path, "w") as f:
+                    f.write(spec.case_text)
+            argv = [self.path] + spec.argv(case_path, d) + (["--restart", checkpoints[0]] if resume else [])
+            if resume:
+                log(f"  {spec.name}: continuing from its checkpoint {checkpoints[0]}")
             log(f"  {spec.name}: running {spec.command} ({spec.threads} thread{'s' if spec.threads > 1 else ''}) ...")
             result = self._execute(spec, argv, d)
+            parts = (previous or {}).get("parts", [previous] if previous else [])
+            if resume:
+                # Times of the parts before: those that ended with a record (a machine that went away leaves
+                # none; the CSV's wall_time column counts every part).
+                result.wall_s += sum(p["wall_s"] for p in parts)
+                result.cpu_s += sum(p["cpu_s"] for p in parts)
             log(f"  {spec.name}: {'done' if result.ok else 'FAILED (exit %d)' % result.returncode} in "
                 f"{result.wall_s:.1f} s wall, {result.cpu_s:.1f} s CPU" + ("" if result.ok else f": {result.message()}"))
-            with open(os.path.join(d, "run.log"), "w") as f:
+            with open(os.path.join(d, "run.log"), "a" if resume else "w") as f:
                 f.write(" ".join(argv) + "\n" + result.stdout + result.stderr
                         + f"\n[exit {result.returncode}, wall {result.wall_s:.2f} s, CPU {result.cpu_s:.2f} s, "
                           f"load {result.load[0]:.2f} -> {result.load[1]:.2f}]\n")
@@ -176,6 +195,10 @@ class Program:
                 json.dump({"argv": argv, "returncode": result.returncode, "stdout": result.stdout,
                            "stderr": result.stderr, "wall_s": result.wall_s, "cpu_s": result.cpu_s,
                            "load": list(result.load), "timeout": spec.timeout, "program": self.provenance(),
+                           "parts": [{k: p[k] for k in ("wall_s", "cpu_s", "returncode")} for p in parts]
+                           + [{"wall_s": result.wall_s - sum(p["wall_s"] for p in parts),
+                               "cpu_s": result.cpu_s - sum(p["cpu_s"] for p in parts),
+                               "returncode": result.returncode}],
                            "date": time.strftime("%Y-%m-%d %H:%M:%S UTC", time.gmtime())}, f, indent=1)
             os.replace(done + ".tmp", done)
             return result
@@ -190,8 +213,14 @@ class Program:
                 _, status, usage = _wait4(p, spec.timeout)
                 code = os.waitstatus_to_exitcode(status)
             except subprocess.TimeoutExpired:
-                p.kill()
-                _, status, usage = os.wait4(p.pid, 0)
+                # SIGTERM first: the run stops at its next solve, its files in step, with a checkpoint when
+                # it stops between increments; SIGKILL if it has not within two minutes.
+                p.terminate()
+                try:
+                    _, status, usage = _wait4(p, 120)
+                except subprocess.TimeoutExpired:
+                    p.kill()
+                    _, status, usage = os.wait4(p.pid, 0)
                 code = 124
             p.returncode = code
             wall = time.time() - t0

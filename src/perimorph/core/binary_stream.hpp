@@ -6,6 +6,8 @@
 
 #include <cstdint>
 #include <cstring>
+#include <functional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -16,29 +18,46 @@ namespace perimorph::core {
 
 class BinaryWriter {
  public:
+  /// Bytes go to `sink` in pieces of a few MB (and at flush), so that a
+  /// checkpoint of a large run is never held in memory whole.
+  explicit BinaryWriter(std::function<void(std::string_view)> sink) : sink_(std::move(sink)) {}
+
   template <class T>
   void put(const T& value) {
     static_assert(std::is_trivially_copyable_v<T>);
-    const auto* p = reinterpret_cast<const char*>(&value);
-    bytes_.append(p, sizeof(T));
+    append(reinterpret_cast<const char*>(&value), sizeof(T));
+  }
+  /// The values alone (put_vector = their count, then put_values).
+  template <class T>
+  void put_values(std::span<const T> values) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
   }
   template <class T>
   void put_vector(const std::vector<T>& values) {
-    static_assert(std::is_trivially_copyable_v<T>);
     put<std::uint64_t>(values.size());
-    bytes_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+    put_values(std::span<const T>(values));
   }
   void put_string(std::string_view s) {
     put<std::uint64_t>(s.size());
-    bytes_.append(s.data(), s.size());
+    append(s.data(), s.size());
   }
   /// A section tag, checked by BinaryReader::expect: a reader that drifts
   /// out of step with the writer stops at the next tag.
   void tag(std::string_view name) { put_string(name); }
-  const std::string& bytes() const { return bytes_; }
+  /// Hands what is buffered to the sink.
+  void flush() {
+    if (!buffer_.empty()) sink_(buffer_);
+    buffer_.clear();
+  }
 
  private:
-  std::string bytes_;
+  void append(const char* p, std::size_t n) {
+    buffer_.append(p, n);
+    if (buffer_.size() >= (std::size_t{1} << 22)) flush();
+  }
+  std::function<void(std::string_view)> sink_;
+  std::string buffer_;
 };
 
 class BinaryReader {

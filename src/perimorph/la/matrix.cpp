@@ -320,13 +320,6 @@ assembly::SparsityPattern Matrix::block_pattern() const {
   return pattern;
 }
 
-std::vector<double> Matrix::values() const {
-  std::vector<double> out;
-  out.reserve(static_cast<std::size_t>(nonzeros()));
-  visit_rows([&](Index, std::span<const Index>, std::span<const double> v) { out.insert(out.end(), v.begin(), v.end()); });
-  return out;
-}
-
 void Matrix::set_values(std::span<const double> values) {
   release_view();
   if (static_cast<double>(values.size()) != nonzeros())

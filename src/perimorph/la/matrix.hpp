@@ -71,11 +71,10 @@ class Matrix final : public assembly::MatrixInserter {
       const std::function<void(Index, std::span<const Index>, std::span<const double>)>& visit) const;
   /// The stored structure as a block pattern (the matrix's block size; every
   /// row of a block row has the same block columns, as Matrix(pattern) and
-  /// without_zero_blocks make them), and the stored values in row order: with
-  /// Matrix(pattern) and set_values, an exact copy (a checkpoint, run/checkpoint.hpp).
+  /// without_zero_blocks make them): with Matrix(pattern) and set_values of
+  /// the values visit_rows gives, an exact copy (a checkpoint, run/checkpoint.hpp).
   assembly::SparsityPattern block_pattern() const;
-  std::vector<double> values() const;
-  /// Overwrites the stored values (row order, as values() gives them) of a
+  /// Overwrites the stored values (in row order, as visit_rows gives them) of a
   /// finalized matrix; throws Error if their number differs.
   void set_values(std::span<const double> values);
   /// Dense copy, for tests on tiny matrices.

@@ -2,7 +2,6 @@
 
 #include "perimorph/casefile/case_values.hpp"
 #include "perimorph/core/error.hpp"
-#include "perimorph/io/atomic_file.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -51,12 +50,6 @@ std::string read_checkpoint_file(const std::string& path) {
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw Error(fmt::format("cannot read checkpoint '{}': {}", path, std::strerror(errno)));
   return bytes;
-}
-
-void write_checkpoint_file(const std::string& path, const std::string& bytes) {
-  io::AtomicFile file(path);
-  file.write(bytes);
-  file.commit();
 }
 
 void write_header(core::BinaryWriter& out, const casefile::CaseConfig& config) {

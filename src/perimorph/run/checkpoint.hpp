@@ -40,8 +40,6 @@ std::string find_checkpoint(const std::string& given, const std::string& basenam
 
 /// The whole file (throws Error naming it).
 std::string read_checkpoint_file(const std::string& path);
-/// Writes `bytes` to `path` atomically (PATH.tmp renamed over it).
-void write_checkpoint_file(const std::string& path, const std::string& bytes);
 
 /// The opening: tag, version, the case's values ([output] checkpoint_every
 /// left out: it may change between the runs).

@@ -4,6 +4,7 @@
 #include "perimorph/core/binary_stream.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/evolution/checkpoint.hpp"
+#include "perimorph/io/atomic_file.hpp"
 #include "perimorph/io/progress.hpp"
 #include "perimorph/run/checkpoint.hpp"
 #include "perimorph/run/quasi_static_run.hpp"
@@ -24,7 +25,8 @@ void QuasiStaticRun::checkpoint_if_due() {
 }
 
 void QuasiStaticRun::save_checkpoint() {
-  core::BinaryWriter out;
+  io::AtomicFile file(checkpoint_path_);
+  core::BinaryWriter out([&](std::string_view bytes) { file.write(bytes); });
   write_header(out, disc_->config);
   evolution::save_alpha(state_.alpha, out);
   out.tag("run");
@@ -52,7 +54,8 @@ void QuasiStaticRun::save_checkpoint() {
   }
   system_->save(out);
   out.tag("end");
-  write_checkpoint_file(checkpoint_path_, out.bytes());
+  out.flush();
+  file.commit();
   summary_.checkpoint_path = checkpoint_path_;
   summary_.checkpoint_increment = state_.increment;
 }

@@ -15,7 +15,8 @@ void save_matrix(core::BinaryWriter& out, const la::Matrix& M) {
   out.put<int>(p.block_size);
   out.put_vector(p.row_offsets);
   out.put_vector(p.columns);
-  out.put_vector(M.values());
+  out.put<std::uint64_t>(static_cast<std::uint64_t>(M.nonzeros()));
+  M.visit_rows([&](Index, std::span<const Index>, std::span<const double> v) { out.put_values(v); });
 }
 
 la::Matrix load_matrix(core::BinaryReader& in, Index rows) {
