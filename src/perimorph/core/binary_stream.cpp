@@ -13,8 +13,8 @@ void BinaryReader::expect(std::string_view name) {
 }
 
 void BinaryReader::fail(std::string_view what) const {
-  throw Error(fmt::format("{}: corrupt or truncated checkpoint ({}, at byte {} of {})", source_, what, pos_,
-                          bytes_.size()));
+  throw InputError(fmt::format("{}: corrupt or truncated checkpoint ({}, at byte {} of {})", source_, what,
+                               pos_, bytes_.size()));
 }
 
 }  // namespace perimorph::core

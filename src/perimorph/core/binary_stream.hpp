@@ -91,7 +91,7 @@ class BinaryReader {
   void expect(std::string_view name);
   bool at_end() const { return pos_ == bytes_.size(); }
   const std::string& source() const { return source_; }
-  /// Throws Error: "SOURCE: corrupt or truncated checkpoint (WHAT)".
+  /// Throws InputError: "SOURCE: corrupt or truncated checkpoint (WHAT)".
   [[noreturn]] void fail(std::string_view what) const;
 
  private:
