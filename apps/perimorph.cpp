@@ -114,13 +114,15 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("-q,--quiet", quiet, "No progress line and no summary");
   std::string restart;
   int checkpoint_every = -1;
-  run_cmd->add_option("--restart", restart,
-                      "Continue a run from its checkpoint: a BASENAME.checkpoint file, or the output directory "
-                      "holding it (the same case file; docs/output.md, Restart)");
+  run_cmd->add_option(
+      "--restart", restart,
+      "Continue a run from its checkpoint: a BASENAME.checkpoint file, or the output directory "
+      "holding it (the same case file; docs/output.md, Restart)");
   run_cmd
-      ->add_option("--checkpoint-every", checkpoint_every,
-                   "Write BASENAME.checkpoint every N increments (overrides [output] checkpoint_every; 0: only "
-                   "when stopped by SIGINT/SIGTERM)")
+      ->add_option(
+          "--checkpoint-every", checkpoint_every,
+          "Write BASENAME.checkpoint every N increments (overrides [output] checkpoint_every; 0: only "
+          "when stopped by SIGINT/SIGTERM)")
       ->check(CLI::NonNegativeNumber);
   run_cmd->footer(
       "PETSc options follow the case file: every word of the form -name (a dash and two or more characters, "
@@ -207,6 +209,9 @@ int main(int argc, char** argv) {
   } catch (const perimorph::InputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;
+  } catch (const perimorph::OutputError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 5;
   } catch (const perimorph::SolverError& e) {
     fmt::print(stderr, "solver error: {}\n", e.what());
     return 3;

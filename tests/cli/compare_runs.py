@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""compare_runs.py EXPECTED_DIR ACTUAL_DIR: exit 0 if every output file of EXPECTED_DIR (checkpoints aside) is
+"""compare_runs.py EXPECTED_DIR ACTUAL_DIR: exit 0 if every output file of EXPECTED_DIR (checkpoints and the lock aside) is
 in ACTUAL_DIR with the same content, bit for bit; CSV files are compared cell by cell without their timing
 columns (wall_time, remodel_time). Prints the number of files compared and every difference."""
 import csv
@@ -19,7 +19,7 @@ def rows(path):
 expected, actual = sys.argv[1], sys.argv[2]
 differences, files = [], 0
 for name in sorted(os.listdir(expected)):
-    if name.endswith((".checkpoint", ".tmp")):
+    if name.endswith((".checkpoint", ".tmp", ".lock")):
         continue
     files += 1
     a, b = os.path.join(expected, name), os.path.join(actual, name)

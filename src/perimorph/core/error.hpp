@@ -23,6 +23,14 @@ class InputError : public Error {
   using Error::Error;
 };
 
+/// An output folder or file that cannot be made or written (the message
+/// names it and gives the system's reason, e.g. "No space left on device"),
+/// or one another run is writing (io/output_lock.hpp).
+class OutputError : public Error {
+ public:
+  using Error::Error;
+};
+
 /// The linear solver failed, or a non-finite value appeared in the solution.
 class SolverError : public Error {
  public:

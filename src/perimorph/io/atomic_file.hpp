@@ -26,6 +26,7 @@ class AtomicFile {
   std::string path_, tmp_path_;
   std::ofstream file_;
   bool committed_ = false;
+  int error_ = 0;  ///< errno of the first failed write
 };
 
 }  // namespace perimorph::io

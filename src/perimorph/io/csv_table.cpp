@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -43,37 +44,39 @@ CsvTable::CsvTable(std::string path, std::vector<std::string> columns)
     : path_(std::move(path)), columns_(std::move(columns)) {
   if (columns_.empty()) throw std::logic_error(fmt::format("CsvTable '{}': no columns", path_));
   file_.open(path_, std::ios::binary | std::ios::trunc);
-  if (!file_) throw Error(fmt::format("cannot open '{}' for writing: {}", path_, std::strerror(errno)));
+  if (!file_) throw OutputError(fmt::format("cannot open '{}' for writing: {}", path_, std::strerror(errno)));
   const std::string header = header_line(columns_);
   file_.write(header.data(), static_cast<std::streamsize>(header.size()));
   file_.flush();
-  if (!file_) throw Error(fmt::format("error while writing '{}'", path_));
+  if (!file_) throw OutputError(fmt::format("cannot write '{}': {}", path_, std::strerror(errno)));
+  bytes_ = header.size();
 }
 
 CsvTable::CsvTable(std::string path, std::vector<std::string> columns, std::size_t keep_rows)
     : path_(std::move(path)), columns_(std::move(columns)), rows_(keep_rows) {
   if (columns_.empty()) throw std::logic_error(fmt::format("CsvTable '{}': no columns", path_));
   std::ifstream in(path_, std::ios::binary);
-  if (!in) throw Error(fmt::format("cannot continue '{}': {}", path_, std::strerror(errno)));
+  if (!in) throw OutputError(fmt::format("cannot continue '{}': {}", path_, std::strerror(errno)));
   const std::string header = header_line(columns_);
   std::string line;
   std::getline(in, line);
   if (line + '\n' != header)
-    throw Error(fmt::format("cannot continue '{}': its columns are not this run's (a file of another case?)",
-                            path_));
+    throw OutputError(
+        fmt::format("cannot continue '{}': its columns are not this run's (a file of another case?)", path_));
   std::size_t end = header.size();
   for (std::size_t r = 0; r < keep_rows; ++r) {
     if (!std::getline(in, line) || in.eof())
-      throw Error(fmt::format("cannot continue '{}': it has {} complete rows, the checkpoint needs {}",
-                              path_, r, keep_rows));
+      throw OutputError(fmt::format("cannot continue '{}': it has {} complete rows, the checkpoint needs {}",
+                                    path_, r, keep_rows));
     end += line.size() + 1;
   }
   in.close();
   std::error_code ec;
   std::filesystem::resize_file(path_, end, ec);
-  if (ec) throw Error(fmt::format("cannot continue '{}': {}", path_, ec.message()));
+  if (ec) throw OutputError(fmt::format("cannot continue '{}': {}", path_, ec.message()));
+  bytes_ = end;
   file_.open(path_, std::ios::binary | std::ios::app);
-  if (!file_) throw Error(fmt::format("cannot open '{}' for writing: {}", path_, std::strerror(errno)));
+  if (!file_) throw OutputError(fmt::format("cannot open '{}' for writing: {}", path_, std::strerror(errno)));
 }
 
 void CsvTable::add_row(const std::vector<double>& row) {
@@ -88,8 +91,33 @@ void CsvTable::add_row(const std::vector<double>& row) {
   line += '\n';
   file_.write(line.data(), static_cast<std::streamsize>(line.size()));
   file_.flush();
-  if (!file_) throw Error(fmt::format("error while writing '{}'", path_));
+  if (!file_) {
+    const int error = errno;
+    truncate_to(bytes_);
+    throw OutputError(fmt::format("cannot write '{}': {}", path_, std::strerror(error)));
+  }
+  last_row_at_ = bytes_;
+  bytes_ += line.size();
   ++rows_;
+}
+
+void CsvTable::remove_last_row() {
+  if (rows_ == 0 || last_row_at_ == bytes_)
+    throw std::logic_error("CsvTable::remove_last_row: no row to remove");
+  truncate_to(last_row_at_);
+  --rows_;
+}
+
+void CsvTable::truncate_to(std::uintmax_t size) {
+  file_.close();
+  std::error_code ec;
+  std::filesystem::resize_file(path_, size, ec);
+  if (ec)
+    throw OutputError(fmt::format("cannot cut '{}' back to its last complete row: {}", path_, ec.message()));
+  bytes_ = size;
+  file_.clear();
+  file_.open(path_, std::ios::binary | std::ios::app);
+  if (!file_) throw OutputError(fmt::format("cannot open '{}' for writing: {}", path_, std::strerror(errno)));
 }
 
 }  // namespace perimorph::io

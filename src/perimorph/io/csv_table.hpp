@@ -3,6 +3,7 @@
 // by row and flushed after each row so a run that dies still leaves every
 // completed row on disk.
 
+#include <cstdint>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -25,18 +26,27 @@ class CsvTable {
   /// Appends one row and flushes it. Values are written in shortest
   /// round-trip form (parsing the text gives back the same double; non-finite
   /// values appear as nan, inf, -inf). Throws std::logic_error if
-  /// row.size() != columns().size(), perimorph::Error on a write failure.
+  /// row.size() != columns().size(), perimorph::OutputError on a write
+  /// failure (a full disk), after cutting off what it wrote of the row.
   void add_row(const std::vector<double>& row);
+  /// Cuts off the row the last add_row wrote (a caller's later step failed:
+  /// the files stay in step); truncating needs no space. Once per add_row.
+  /// Throws OutputError if it cannot.
+  void remove_last_row();
 
   const std::string& path() const { return path_; }
   const std::vector<std::string>& columns() const { return columns_; }
   std::size_t rows() const { return rows_; }
 
  private:
+  /// Cuts the file to `size` bytes and reopens it for appending.
+  void truncate_to(std::uintmax_t size);
   std::string path_;
   std::vector<std::string> columns_;
   std::ofstream file_;
   std::size_t rows_ = 0;
+  std::uintmax_t bytes_ = 0;        ///< the file's size after the last complete row
+  std::uintmax_t last_row_at_ = 0;  ///< where that row starts (remove_last_row, once)
 };
 
 }  // namespace perimorph::io

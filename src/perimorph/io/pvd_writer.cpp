@@ -28,7 +28,12 @@ void PvdCollection::add(double time, const std::string& vtu_relative_path) {
     throw std::logic_error(fmt::format("PvdCollection::add: time {} is not finite", time));
   if (vtu_relative_path.empty()) throw std::logic_error("PvdCollection::add: empty file name");
   entries_.push_back({time, vtu_relative_path});
-  rewrite();
+  try {
+    rewrite();
+  } catch (...) {
+    entries_.pop_back();  // the file on disk is still the previous collection
+    throw;
+  }
 }
 
 void PvdCollection::rewrite() const {

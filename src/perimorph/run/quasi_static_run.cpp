@@ -52,7 +52,8 @@ QuasiStaticRun::QuasiStaticRun(const setup::Discretization& disc, const RunOptio
   progress_ = options.progress ? options.progress : own_progress_.get();
   la::add_options(config.solver.petsc_options);
 
-  checkpoint_every_ = options.checkpoint_every >= 0 ? options.checkpoint_every : config.output.checkpoint_every;
+  checkpoint_every_ =
+      options.checkpoint_every >= 0 ? options.checkpoint_every : config.output.checkpoint_every;
   summary_.output_directory = resolve_output_directory(config, options);
   checkpoint_path_ = checkpoint_path(summary_.output_directory, basename_of(config));
   if (!options.restart.empty()) {
@@ -360,9 +361,11 @@ void QuasiStaticRun::record(bool force_vtu) {
   rec_.relative_residual = summary_.last_solve.relative_residual;
   rec_.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   rec_.released = fracture_ || damage_ ? state_.energy.released() : 0.0;
-  output_->add_row(rec_);
+  // The VTU first, then the row and its PVD entry (RunOutput::add_row): the
+  // files stay in step whatever fails.
   const int i = state_.increment;
-  if (force_vtu || i % disc_->config.output.every == 0 || i == increments()) write_vtu(i);
+  if (force_vtu || i % disc_->config.output.every == 0 || i == increments()) write_vtu(i, true);
+  output_->add_row(rec_);
   summary_.displacement = uv;
   summary_.reactions = rec_.reactions;
   summary_.strain_energy = energy;
@@ -370,10 +373,10 @@ void QuasiStaticRun::record(bool force_vtu) {
   summary_.history.push_back(rec_);
 }
 
-void QuasiStaticRun::write_vtu(int increment) {
+void QuasiStaticRun::write_vtu(int increment, bool listed_by_row) {
   output_->write_increment_vtu(*disc_, increment, state_.load_factor, state_.u,
                                fracture_ ? fracture_->fields(state_) : evolution::FractureFields{},
-                               damage_ ? damage_->fields(state_) : evolution::DamageFields{});
+                               damage_ ? damage_->fields(state_) : evolution::DamageFields{}, listed_by_row);
 }
 
 void QuasiStaticRun::stop_damage_unsettled() {

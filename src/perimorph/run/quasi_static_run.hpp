@@ -89,8 +89,9 @@ class QuasiStaticRun {
   [[noreturn]] void stop_unsettled(std::size_t over);
   /// The damage still moves after [damage] max_iterations updates.
   [[noreturn]] void stop_damage_unsettled();
-  /// The VTU fields of the state's fracture and damage (empty where absent).
-  void write_vtu(int increment);
+  /// The VTU fields of the state's fracture and damage (empty where absent);
+  /// with `listed_by_row` its PVD entry waits for the CSV row (RunOutput::add_row).
+  void write_vtu(int increment, bool listed_by_row = false);
   /// A pending stop request (core/interrupt.hpp) ends the run here, between
   /// solves: Interrupted, naming the increment and what is written.
   void stop_if_asked();

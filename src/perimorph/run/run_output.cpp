@@ -8,6 +8,7 @@
 
 #include <array>
 #include <filesystem>
+#include <utility>
 
 namespace perimorph::run {
 
@@ -50,7 +51,8 @@ RunOutput::RunOutput(const setup::Discretization& model, std::string directory, 
       damage_(model.damage.has_value()) {
   std::error_code ec;
   std::filesystem::create_directories(directory_, ec);
-  if (ec) throw InputError(fmt::format("cannot create output directory '{}': {}", directory_, ec.message()));
+  if (ec) throw OutputError(fmt::format("cannot create output directory '{}': {}", directory_, ec.message()));
+  lock_ = std::make_unique<io::OutputLock>(directory_, basename_);
   std::vector<std::string> columns{"increment", "load_factor"};
   const char* axes = "xyz";
   for (const auto& name : reaction_names)
@@ -79,24 +81,23 @@ RunOutput::RunOutput(const setup::Discretization& model, std::string directory, 
   };
   csv_ = table(csv_path(), std::move(columns), &OutputPosition::rows);
   if (adaptive_)
-    alpha_csv_ = table(
-        (std::filesystem::path(directory_) / (basename_ + "_alpha.csv")).string(),
-        std::vector<std::string>{"increment", "cell", "x", "y", "z", "radius", "transition", "predicted",
-                                 "critical_damage"},
-        &OutputPosition::alpha_rows);
+    alpha_csv_ = table((std::filesystem::path(directory_) / (basename_ + "_alpha.csv")).string(),
+                       std::vector<std::string>{"increment", "cell", "x", "y", "z", "radius", "transition",
+                                                "predicted", "critical_damage"},
+                       &OutputPosition::alpha_rows);
   if (fracture_)
-    failures_csv_ = table(
-        failures_csv_path(),
-        std::vector<std::string>{"increment", "iteration", "bonds_failed", "dissipated_energy",
-                                 "overshoot_energy", "max_stretch_ratio", "solver_iterations",
-                                 "preconditioner_rebuilt", "wall_time"},
-        &OutputPosition::failure_rows);
+    failures_csv_ =
+        table(failures_csv_path(),
+              std::vector<std::string>{"increment", "iteration", "bonds_failed", "dissipated_energy",
+                                       "overshoot_energy", "max_stretch_ratio", "solver_iterations",
+                                       "preconditioner_rebuilt", "wall_time"},
+              &OutputPosition::failure_rows);
   if (fracture_ && model.config.output.failed_bonds)
-    failed_bonds_csv_ = table(
-        (std::filesystem::path(directory_) / (basename_ + "_failed_bonds.csv")).string(),
-        std::vector<std::string>{"increment", "iteration", "xg", "yg", "zg", "xh", "yh", "zh", "stretch",
-                                 "dissipated_energy", "overshoot_energy"},
-        &OutputPosition::failed_bond_rows);
+    failed_bonds_csv_ =
+        table((std::filesystem::path(directory_) / (basename_ + "_failed_bonds.csv")).string(),
+              std::vector<std::string>{"increment", "iteration", "xg", "yg", "zg", "xh", "yh", "zh",
+                                       "stretch", "dissipated_energy", "overshoot_energy"},
+              &OutputPosition::failed_bond_rows);
   if (model.config.output.vtu)
     pvd_ = resume ? std::make_unique<io::PvdCollection>(pvd_path(), resume->pvd)
                   : std::make_unique<io::PvdCollection>(pvd_path());
@@ -127,7 +128,7 @@ std::string RunOutput::failures_csv_path() const {
 
 void RunOutput::write_increment_vtu(const setup::Discretization& model, int increment, double load_factor,
                                     std::span<const double> u, const evolution::FractureFields& fracture,
-                                    const evolution::DamageFields& damage) {
+                                    const evolution::DamageFields& damage, bool listed_by_row) {
   if (!pvd_) return;
   const auto& dm = model.dofmap;
   io::UnstructuredGrid grid;
@@ -210,7 +211,11 @@ void RunOutput::write_increment_vtu(const setup::Discretization& model, int incr
   }
 
   io::write_vtu(vtu_path(increment), grid);
-  pvd_->add(load_factor, std::filesystem::path(vtu_path(increment)).filename().string());
+  const std::string name = std::filesystem::path(vtu_path(increment)).filename().string();
+  if (listed_by_row)
+    unlisted_ = io::PvdCollection::Entry{load_factor, name};
+  else
+    pvd_->add(load_factor, name);
 }
 
 void RunOutput::add_row(const IncrementRecord& r) {
@@ -234,7 +239,25 @@ void RunOutput::add_row(const IncrementRecord& r) {
     row.insert(row.end(), {static_cast<double>(r.dofs), static_cast<double>(r.dg_cells),
                            static_cast<double>(r.nonlocal_cells), static_cast<double>(r.alpha_balls),
                            r.model_change, r.remodel_seconds});
-  csv_->add_row(row);
+  const auto unlisted = std::exchange(unlisted_, std::nullopt);
+  auto remove_vtu = [&] {
+    std::error_code ec;
+    if (unlisted) std::filesystem::remove(std::filesystem::path(directory_) / unlisted->file, ec);
+  };
+  try {
+    csv_->add_row(row);
+  } catch (const OutputError&) {
+    remove_vtu();
+    throw;
+  }
+  if (!unlisted) return;
+  try {
+    pvd_->add(unlisted->time, unlisted->file);
+  } catch (const OutputError&) {
+    csv_->remove_last_row();
+    remove_vtu();
+    throw;
+  }
 }
 
 void RunOutput::add_alpha_balls(std::span<const evolution::AlphaBall> balls) {

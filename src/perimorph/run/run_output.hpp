@@ -8,11 +8,13 @@
 #include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/evolution/local_damage.hpp"
 #include "perimorph/io/csv_table.hpp"
+#include "perimorph/io/output_lock.hpp"
 #include "perimorph/io/pvd_writer.hpp"
 #include "perimorph/la/linear_solver.hpp"
 #include "perimorph/setup/discretization.hpp"
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -71,9 +73,16 @@ class RunOutput {
             std::vector<std::string> reaction_names, const OutputPosition* resume = nullptr);
   OutputPosition position() const;
 
+  /// Writes the increment's VTU and lists it in the PVD; with `listed_by_row`
+  /// the PVD entry waits for add_row (below).
   void write_increment_vtu(const setup::Discretization& model, int increment, double load_factor,
                            std::span<const double> u, const evolution::FractureFields& fracture = {},
-                           const evolution::DamageFields& damage = {});
+                           const evolution::DamageFields& damage = {}, bool listed_by_row = false);
+  /// The increment's CSV row, then the PVD entry of a VTU written with
+  /// listed_by_row: in this order (after the VTU file) the files stay in step
+  /// whatever fails — a failed row removes that VTU, a failed entry also the
+  /// row (cutting and deleting need no space on a full disk) — and
+  /// OutputError names the file and the system's reason.
   void add_row(const IncrementRecord& r);
   /// Fracture runs: one row per bond-breaking iteration in BASENAME_failures.csv
   /// (increment, iteration, bonds failed, their energy at s_crit and beyond,
@@ -105,7 +114,10 @@ class RunOutput {
   std::string directory_, basename_;
   int dim_;
   bool fracture_ = false, adaptive_ = false, damage_ = false;
+  std::unique_ptr<io::OutputLock> lock_;  ///< taken before any file is touched
   std::unique_ptr<io::CsvTable> csv_, failures_csv_, failed_bonds_csv_, alpha_csv_;
+  /// A VTU written with listed_by_row, waiting for its row: time and file name.
+  std::optional<io::PvdCollection::Entry> unlisted_;
   std::unique_ptr<io::PvdCollection> pvd_;
 };
 
