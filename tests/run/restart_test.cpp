@@ -16,6 +16,7 @@
 #include "support/fracture_cases.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <csignal>
 #include <filesystem>
@@ -28,8 +29,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// A fresh folder of this process (CTest runs each test in its own process,
+/// several at once: the suite's shared runs must not meet).
 std::string scratch_dir(const std::string& name) {
-  const auto dir = fs::temp_directory_path() / ("perimorph_restart_" + name);
+  const auto dir = fs::temp_directory_path() / ("perimorph_restart_" + std::to_string(getpid()) + "_" + name);
   fs::remove_all(dir);
   return dir.string();
 }
@@ -111,6 +114,8 @@ class RestartFracture : public ::testing::Test {
     run_until(*disc_, checkpointed_, 8);
   }
   static void TearDownTestSuite() {
+    fs::remove_all(full_);
+    fs::remove_all(checkpointed_);
     delete disc_;
     delete config_;
   }
