@@ -27,3 +27,14 @@ while [ ! -f \"$2/shared/fracture_plate.csv\" ] && [ $i -lt 600 ]; do sleep 0.05
 set_tests_properties(cli_second_writer_of_an_output_set_is_refused PROPERTIES
   PASS_REGULAR_EXPRESSION "another run \\(process [0-9]+\\) is writing fracture_plate[.][*].*second: exit status 5\nfirst: exit status 0"
   TIMEOUT 120)
+
+# Issue 18, item 5: a reaction or an energy that is NaN or Inf stops the run at
+# that increment, written as it came out, naming the increment and the
+# columns (exit status 3).
+add_test(NAME cli_non_finite_energy_stops_the_run_naming_the_columns
+  COMMAND sh -c "rm -rf \"$2\"; \"$0\" run \"$1\" -o \"$2\" --quiet; echo \"exit status $?\"; \
+echo \"$(($(wc -l < \"$2/overflow_bar.csv\") - 1)) rows\""
+          $<TARGET_FILE:perimorph_cli> ${CMAKE_CURRENT_SOURCE_DIR}/data/runs/overflow_bar.toml ${PM_OUTPUT_OUT}/overflow)
+set_tests_properties(cli_non_finite_energy_stops_the_run_naming_the_columns PROPERTIES
+  PASS_REGULAR_EXPRESSION "solver error: increment 1/2 \\(load factor 0.5\\): strain_energy = inf, external_work = inf \\(CSV columns\\) although the solution is finite.*exit status 3\n1 rows"
+  TIMEOUT 60)

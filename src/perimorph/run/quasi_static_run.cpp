@@ -11,6 +11,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 namespace perimorph::run {
@@ -371,6 +372,35 @@ void QuasiStaticRun::record(bool force_vtu) {
   summary_.strain_energy = energy;
   summary_.external_work = work;
   summary_.history.push_back(rec_);
+  stop_if_not_finite();
+}
+
+void QuasiStaticRun::stop_if_not_finite() {
+  static constexpr const char* axes = "xyz";
+  std::vector<std::pair<std::string, double>> values{{"strain_energy", rec_.strain_energy},
+                                                     {"external_work", rec_.external_work}};
+  for (std::size_t k = 0; k < rec_.reactions.size(); ++k)
+    for (int d = 0; d < disc_->dim(); ++d)
+      values.emplace_back(fmt::format("reaction_{}_{}", summary_.reaction_names[k], axes[d]),
+                          rec_.reactions[k][d]);
+  if (fracture_ || damage_)
+    values.insert(values.end(), {{"dissipated_energy", rec_.dissipated},
+                                 {"overshoot_energy", rec_.overshoot},
+                                 {"damage_dissipated_energy", rec_.damage_dissipated},
+                                 {"released_energy", rec_.released}});
+  if (adaptivity_) values.emplace_back("model_energy_change", rec_.model_change);
+  std::vector<std::string> bad;
+  for (const auto& [name, v] : values)
+    if (!std::isfinite(v)) bad.push_back(fmt::format("{} = {}", name, v));
+  if (bad.empty()) return;
+  progress_->finish();
+  const int i = state_.increment;
+  throw SolverError(fmt::format(
+      "increment {}/{} (load factor {}): {} (CSV columns) although the solution is finite: numbers "
+      "beyond double precision (the loads or the moduli of the case, e.g. a prescribed displacement of "
+      "1e200). The increment is written as it came out, its CSV row {}; the run stops here",
+      i, increments(), state_.load_factor, fmt::join(bad, ", "),
+      output_->writes_vtu() ? fmt::format("and {}", output_->vtu_path(i)) : "(no VTU)"));
 }
 
 void QuasiStaticRun::write_vtu(int increment, bool listed_by_row) {

@@ -77,6 +77,9 @@ class QuasiStaticRun {
  private:
   /// The CSV row (and VTU when due or `force_vtu`) of the state reached.
   void record(bool force_vtu);
+  /// A reaction or an energy of the increment just recorded that is NaN or
+  /// Inf stops the run (SolverError naming the increment and the columns).
+  void stop_if_not_finite();
   /// "Results of increments 1..N are in DIR" for messages (and the checkpoint, if any).
   std::string kept() const;
   /// Writes the checkpoint of the state (that of a completed increment) and
