@@ -110,7 +110,8 @@ CellGraph find_cell_neighbors(const mesh::Mesh& mesh, const CellBoxes& boxes, do
   // Bins of size ≥ horizon + extent: interacting cells have centroids in
   // adjacent bins.
   const double bin = horizon + extent;
-  const auto [box_lo, box_hi] = mesh.bounding_box();
+  const auto box = mesh.bounding_box();
+  const Vec3 box_lo = box.first, box_hi = box.second;  // (a lambda below uses them: clang < 16 cannot capture bindings)
   std::array<long, 3> nbins{1, 1, 1};
   for (int d = 0; d < dim; ++d)
     nbins[static_cast<std::size_t>(d)] =
