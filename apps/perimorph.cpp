@@ -25,6 +25,7 @@
 #include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -123,7 +124,7 @@ int main(int argc, char** argv) {
           "--checkpoint-every", checkpoint_every,
           "Write BASENAME.checkpoint every N increments (overrides [output] checkpoint_every; 0: only "
           "when stopped by SIGINT/SIGTERM)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, std::numeric_limits<int>::max()));
   run_cmd->footer(
       "PETSc options follow the case file: every word of the form -name (a dash and two or more characters, "
       "e.g. -ksp_type cg, -options_file F, -options_left) is passed to PETSc's options database with the "
@@ -191,7 +192,10 @@ int main(int argc, char** argv) {
     for (const auto& a : args.program) program.push_back(a.c_str());
     app.parse(static_cast<int>(program.size()), program.data());
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // CLI11 prints the message (or --help); a command-line error exits 2 like
+    // any input error (docs/output.md), not with CLI11's own codes (105, 106, ...).
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
   }
 
   try {

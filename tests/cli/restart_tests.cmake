@@ -25,3 +25,11 @@ set_tests_properties(cli_restart_after_sigkill_continues_bit_for_bit PROPERTIES
   FIXTURES_REQUIRED restart_full
   PASS_REGULAR_EXPRESSION "killed: exit status 137.*continued after increment [0-9]+ .*[0-9]+ files compared, 0 differ"
   TIMEOUT 180)
+
+# A bad value on the command line is an input error: exit status 2 with
+# CLI11's message (not CLI11's own exit codes).
+add_test(NAME cli_bad_checkpoint_every_is_an_input_error
+  COMMAND sh -c "\"$0\" run \"$1\" --checkpoint-every -2 --quiet; echo \"exit status $?\""
+          $<TARGET_FILE:perimorph_cli> ${PROJECT_SOURCE_DIR}/examples/fracture_plate_2d/case.toml)
+set_tests_properties(cli_bad_checkpoint_every_is_an_input_error PROPERTIES
+  PASS_REGULAR_EXPRESSION "--checkpoint-every: Value -2 not in range 0 to 2147483647.*exit status 2" TIMEOUT 30)
