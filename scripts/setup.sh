@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 # alternatives pick it over the reference BLAS); serial, so it never competes with OpenMP threads.
 # Measured on the flagship: MUMPS Cholesky 21.6 -> 9.5 s (docs/benchmarks/fracture-update.md).
 packages=(build-essential cmake ninja-build pkg-config petsc-dev libeigen3-dev libtomlplusplus-dev
-          libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev openmpi-bin
+          libcli11-dev libfmt-dev libgmsh-dev libgtest-dev libgmock-dev libbenchmark-dev openmpi-bin
           libopenblas0-serial python3 python3-matplotlib python3-numpy)
 missing=()
 for p in "${packages[@]}"; do

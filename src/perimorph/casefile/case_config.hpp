@@ -24,7 +24,7 @@ struct SourceLocation {
   std::string describe() const;  ///< "case.toml:12:5: key 'dirichlet[2].set'"
 };
 
-/// [mesh] type = "box"
+/// [mesh] type = "box". `dim` is the case's dimension for every mesh type.
 struct BoxMesh {
   int dim = 3;
   Vec3 lower = Vec3::Zero();
@@ -54,18 +54,36 @@ struct HoleSpec {
   SourceLocation where;
 };
 
+enum class MeshKind { box, gmsh };
+
+/// [mesh] type = "gmsh": a mesh file read through Gmsh's library
+/// (mesh/gmsh_reader.hpp), its physical groups as named sets.
+struct GmshMesh {
+  std::string file;  ///< as given, made relative to the case file's folder
+  /// Face groups (physical curves in 2D, surfaces in 3D) split as pre-cracks
+  /// (mesh::split_along_faces): [mesh] precrack = "name" or ["a", "b"].
+  std::vector<std::string> precracks;
+  SourceLocation where;           ///< the `file` key
+  SourceLocation precrack_where;  ///< the `precrack` key
+};
+
 struct MeshSpec {
-  BoxMesh box;
+  MeshKind kind = MeshKind::box;
+  BoxMesh box;    ///< type = "box" (only box.dim, the dimension, for "gmsh")
+  GmshMesh gmsh;  ///< type = "gmsh"
   std::vector<HoleSpec> holes;
   std::vector<CutSpec> cuts;
 };
 
-/// [[region]]: the cells whose centroid lies in a box (lower, upper).
+/// [[region]]: the cells whose centroid lies in a box (lower, upper), or the
+/// cells of a cell set of the mesh (`set`, e.g. a Gmsh physical surface or
+/// volume; then lower and upper are unused).
 struct RegionSpec {
   std::string name;
   int id = 0;  ///< 1, 2, ... in order of appearance; 0 is the rest of the mesh
   Vec3 lower = Vec3::Zero();
   Vec3 upper = Vec3::Zero();
+  std::string set;  ///< non-empty: the region is this mesh cell set
   SourceLocation where;
 };
 

@@ -30,11 +30,12 @@ NodeSetSpec read_node_set(const Table& t, const CaseConfig& c, const std::vector
   const Value name = t.require(
       "name", "the node set's name, which [[dirichlet]] set = \"...\" refers to, e.g. name = \"pin\"");
   s.name = name.name();
-  const std::vector<std::string>& reserved = mesh_set_names();
+  const std::vector<std::string> reserved =
+      c.mesh.kind == MeshKind::box ? mesh_set_names() : std::vector<std::string>{"boundary", "all"};
   if (std::find(reserved.begin(), reserved.end(), s.name) != reserved.end())
     name.fail(
-        fmt::format("the name {:?} is already a set of the box mesh (the mesh has {}); choose another name",
-                    s.name, fmt::join(reserved, ", ")));
+        fmt::format("the name {:?} is already a set of the mesh (every {} mesh has {}); choose another name",
+                    s.name, c.mesh.kind == MeshKind::box ? "box" : "Gmsh", fmt::join(reserved, ", ")));
   for (const RegionSpec& r : c.regions)
     if (r.name == s.name)
       name.fail(

@@ -29,6 +29,10 @@ std::string index_path(std::string_view path, std::size_t i) {
 
 }  // namespace
 
+std::string point(const Vec3& v, int n) {
+  return fmt::format("[{}]", fmt::join(v.data(), v.data() + n, ", "));
+}
+
 std::string render(const toml::node& node) {
   std::ostringstream out;
   node.visit([&](const auto& n) { out << n; });  // floats keep their ".0"

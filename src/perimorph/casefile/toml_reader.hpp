@@ -26,6 +26,11 @@ namespace perimorph::casefile::detail {
 /// (implicit tables included) a position; a missing one reads as 1:1.
 SourceLocation locate(const std::string& file, const toml::node& node, std::string path);
 
+/// "[0, 24]": the first n components of v.
+std::string point(const Vec3& v, int n);
+/// Axis names for messages.
+inline constexpr const char* kAxis[3] = {"x", "y", "z"};
+
 /// toml++'s rendering of a value, cut to 60 characters: "[ 1, 2.0 ]".
 std::string render(const toml::node& node);
 

@@ -34,6 +34,7 @@ bool Cut::contains(const Vec3& p, double tol) const {
   if (dim == 3) {
     const double tt = tol / edge2.norm();
     if (t < -tt || t > 1 + tt) return false;
+    if (triangle && s + t > 1 + ts + tt) return false;
   }
   return true;
 }
@@ -53,7 +54,8 @@ bool Cut::crosses(const Vec3& a, const Vec3& b) const {
   constexpr double kEdgeTie = 1e-12;
   auto [s, t] = in_plane_coordinates(*this, p);
   if (s < -kEdgeTie || s > 1 + kEdgeTie) return false;
-  return dim == 2 || (t >= -kEdgeTie && t <= 1 + kEdgeTie);
+  if (dim == 2) return true;
+  return t >= -kEdgeTie && t <= 1 + kEdgeTie && (!triangle || s + t <= 1 + 2 * kEdgeTie);
 }
 
 }  // namespace perimorph

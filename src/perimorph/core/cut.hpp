@@ -10,12 +10,15 @@ namespace perimorph {
 /// (mesh::split_along_cut) and the non-local model removes the bonds that
 /// cross it (THEORY §4). In 1D it is a
 /// point (origin), in 2D a segment (origin, origin + edge1), in 3D a
-/// parallelogram (origin + s edge1 + t edge2, s, t in [0, 1]).
+/// parallelogram (origin + s edge1 + t edge2, s, t in [0, 1]) or, with
+/// `triangle`, the triangle s, t ≥ 0, s + t ≤ 1 (the pieces of a pre-crack
+/// read from a mesh file, mesh::split_along_faces).
 struct Cut {
   int dim = 3;
   Vec3 origin = Vec3::Zero();
   Vec3 edge1 = Vec3::Zero();
   Vec3 edge2 = Vec3::Zero();
+  bool triangle = false;  ///< 3D only
 
   /// Unit normal of the cut's line (2D, in the xy plane) or plane (3D); e_x in 1D.
   Vec3 normal() const;

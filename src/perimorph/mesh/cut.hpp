@@ -22,4 +22,12 @@ struct CutReport {
 /// element faces).
 CutReport split_along_cut(Mesh& mesh, const Cut& cut);
 
+/// Splits `mesh` along the given cell faces (a pre-crack read from a mesh
+/// file, e.g. a Gmsh physical curve or surface): the nodes of the interior
+/// faces among them are split as split_along_cut does, and every face (an
+/// interior one, or a boundary face where the file already split the nodes)
+/// joins Mesh::cuts as geometry for the non-local model: a point (1D), a
+/// segment (2D), two triangles (3D). Faces given from both sides count once.
+CutReport split_along_faces(Mesh& mesh, const std::vector<CellFace>& faces);
+
 }  // namespace perimorph::mesh

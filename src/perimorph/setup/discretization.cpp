@@ -5,6 +5,7 @@
 #include "perimorph/core/error.hpp"
 #include "perimorph/mesh/box.hpp"
 #include "perimorph/mesh/cut.hpp"
+#include "perimorph/mesh/gmsh_reader.hpp"
 #include "perimorph/mesh/holes.hpp"
 
 #include <fmt/format.h>
@@ -48,11 +49,47 @@ void add_node_set(mesh::Mesh& m, const casefile::NodeSetSpec& s, double tol) {
   m.node_sets[s.name] = std::move(nodes);
 }
 
+std::string face_set_names(const mesh::Mesh& m) {
+  std::vector<std::string> names;
+  for (const auto& [name, set] : m.face_sets) names.push_back(name);
+  return fmt::format("{}", fmt::join(names, ", "));
+}
+
+std::string cell_set_names(const mesh::Mesh& m) {
+  std::vector<std::string> names;
+  for (const auto& [name, set] : m.cell_sets) names.push_back(name);
+  return fmt::format("{}", fmt::join(names, ", "));
+}
+
+/// The mesh of [mesh]: a box, or the Gmsh file with its pre-crack groups split.
+mesh::Mesh make_mesh(const casefile::CaseConfig& config) {
+  const auto& box = config.mesh.box;
+  if (config.mesh.kind == casefile::MeshKind::box)
+    return mesh::make_box({box.dim, box.lower, box.upper, box.cells});
+  const auto& g = config.mesh.gmsh;
+  mesh::Mesh m = [&] {
+    try {
+      return mesh::read_gmsh(g.file, box.dim);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: {}", g.where.describe(), e.what()));
+    }
+  }();
+  for (const std::string& name : g.precracks) {
+    const auto it = m.face_sets.find(name);
+    if (it == m.face_sets.end())
+      throw InputError(fmt::format(
+          "{}: the pre-crack {:?} is not a face group of {} (a physical {} of the mesh); its face groups: {}",
+          g.precrack_where.describe(), name, g.file, box.dim == 2 ? "curve" : "surface", face_set_names(m)));
+    mesh::split_along_faces(m, it->second);
+  }
+  return m;
+}
+
 }  // namespace
 
 mesh::Mesh build_mesh(const casefile::CaseConfig& config) {
   const auto& box = config.mesh.box;
-  mesh::Mesh m = mesh::make_box({box.dim, box.lower, box.upper, box.cells});
+  mesh::Mesh m = make_mesh(config);
   for (const auto& h : config.mesh.holes) {  // before regions and cuts: they see the holed mesh
     try {
       mesh::remove_hole(m, Hole{box.dim, h.shape, h.center, h.radius, h.lower, h.upper});
@@ -62,11 +99,17 @@ mesh::Mesh build_mesh(const casefile::CaseConfig& config) {
   }
   for (const auto& r : config.regions) {
     std::vector<Index> cells;
-    for (Index c = 0; c < m.num_cells(); ++c)
-      if (inside(m.cell_centroid(c), r.lower, r.upper, box.dim)) {
-        cells.push_back(c);
-        m.cell_region[static_cast<std::size_t>(c)] = r.id;
-      }
+    if (!r.set.empty()) {
+      const auto it = m.cell_sets.find(r.set);
+      if (it == m.cell_sets.end())
+        throw InputError(fmt::format("{}: region '{}': the mesh has no cell set {:?}; its cell sets: {}",
+                                     r.where.describe(), r.name, r.set, cell_set_names(m)));
+      cells = it->second;
+    } else {
+      for (Index c = 0; c < m.num_cells(); ++c)
+        if (inside(m.cell_centroid(c), r.lower, r.upper, box.dim)) cells.push_back(c);
+    }
+    for (Index c : cells) m.cell_region[static_cast<std::size_t>(c)] = r.id;
     if (cells.empty())
       throw InputError(
           fmt::format("{}: region '{}' contains no cell centroid; enlarge its box or refine the mesh",
