@@ -171,6 +171,68 @@ uy = 0.01
   EXPECT_LT(gmsh.strain_energy, 0.9 * uncut.strain_energy);  // the crack softens the plate
 }
 
+TEST(GmshCase, PrecrackSurfaceActsAsTheBoxCut3D) {
+  const std::string physics = R"(
+[[material]]
+name = "m"
+E = 1000.0
+[nonlocal]
+kernel = "constant"
+horizon = 0.75
+quadrature = 2
+discretization = "discontinuous"
+[alpha]
+value = 1.0
+[loading]
+increments = 1
+[solver]
+petsc_options = "-ksp_type preonly -pc_type lu"
+[output]
+vtu = false
+)";
+  const std::string pull = R"(
+ux = 0.0
+uy = 0.01
+uz = 0.0
+)";
+  const auto box = solve(R"(
+[mesh]
+dim = 3
+lower = [0.0, 0.0, 0.0]
+upper = [2.0, 2.0, 1.0]
+cells = [4, 4, 2]
+[[mesh.cut]]
+origin = [0.0, 1.0, 0.0]
+edge1 = [1.0, 0.0, 0.0]
+edge2 = [0.0, 0.0, 1.0]
+[[dirichlet]]
+set = "ymin"
+ux = 0.0
+uy = 0.0
+uz = 0.0
+[[dirichlet]]
+set = "ymax"
+)" + pull + physics,
+                         "crack3_box");
+  const auto gmsh = solve(R"(
+[mesh]
+type = "gmsh"
+file = "edge_crack_3d.msh"
+dim = 3
+precrack = "crack"
+[[dirichlet]]
+set = "bottom"
+ux = 0.0
+uy = 0.0
+uz = 0.0
+[[dirichlet]]
+set = "top"
+)" + pull + physics,
+                          "crack3_gmsh");
+  ASSERT_GT(box.strain_energy, 0.0);
+  EXPECT_NEAR(gmsh.strain_energy, box.strain_energy, 1e-9 * box.strain_energy);
+}
+
 std::string case_error(const std::string& text) {
   try {
     setup::build_discretization(parse(text));

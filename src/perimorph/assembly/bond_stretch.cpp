@@ -40,6 +40,8 @@ bool for_each_bond_of_pair(const NonlocalSpace& s, Index e, Index f, Visit&& vis
       0.0)
     return true;
   const auto broken = s.broken != nullptr ? s.broken->pair(e, f) : std::span<const std::uint32_t>{};
+  thread_local std::vector<Cut> cut_buffer;
+  const std::span<const Cut> cuts = s.cuts_near(e, f, cut_buffer);
   for (int g = 0; g < n; ++g) {
     const std::size_t kg = pts.index(e, g);
     for (int h = f == e ? g + 1 : 0; h < n; ++h) {
@@ -50,9 +52,9 @@ bool for_each_bond_of_pair(const NonlocalSpace& s, Index e, Index f, Visit&& vis
       const double abar = 0.5 * (pts.alpha[kg] + pts.alpha[kh]);
       if (abar == 0.0) continue;
       if (!wanted(g, h, xi, r2)) continue;
-      const double cb = peridynamics::uncut_bond_micromodulus<D>(
-          s.kernel, pts.x[kg], pts.x[kh], xi, r2, partial ? &pts.half[kg] : nullptr,
-          partial ? &pts.half[kh] : nullptr, s.mesh.cuts);
+      const double cb = peridynamics::uncut_bond_micromodulus<D>(s.kernel, pts.x[kg], pts.x[kh], xi, r2,
+                                                                 partial ? &pts.half[kg] : nullptr,
+                                                                 partial ? &pts.half[kh] : nullptr, cuts);
       if (cb == 0.0) continue;
       const bool failed = !broken.empty() && std::binary_search(broken.begin(), broken.end(),
                                                                 static_cast<std::uint32_t>(g * n + h));

@@ -1,5 +1,7 @@
 #include "perimorph/assembly/morphed_stiffness.hpp"
 
+#include "perimorph/bonds/cut_neighborhood.hpp"
+
 #include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/bonds/nonlocal_points.hpp"
 #include "perimorph/core/dim_dispatch.hpp"
@@ -57,6 +59,8 @@ Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const
   Eigen::MatrixXd I = Eigen::MatrixXd::Zero(nv, nv);
   const bool partial = points.partial_volume();
   const double reach2 = peridynamics::bond_reach_squared(kernel.horizon, partial, 2.0 * points.half_bound);
+  // Only the cuts a bond from x_g can cross (a mesh file's pre-crack has hundreds of pieces).
+  const std::vector<Cut> cuts = bonds::cuts_near_point(mesh.cuts, xg, std::sqrt(reach2));
   for (Index f : cells)
     for (int h = 0; h < points.per_cell; ++h) {
       const std::size_t k = points.index(f, h);
@@ -68,7 +72,7 @@ Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const
       const Vec3* hg = partial ? &half_g : nullptr;
       const Vec3* hh = partial ? &points.half[k] : nullptr;
       const double cb = dispatch_dim(dim, [&](auto D) {
-        return peridynamics::uncut_bond_micromodulus<D()>(kernel, xg, points.x[k], xi, r2, hg, hh, mesh.cuts);
+        return peridynamics::uncut_bond_micromodulus<D()>(kernel, xg, points.x[k], xi, r2, hg, hh, cuts);
       });
       if (cb == 0.0) continue;
       const double s = points.weight[k] * cb * 0.5 * da / (2.0 * r2);

@@ -33,19 +33,6 @@ struct PairTask {
 /// the node counts of both (CG/DG vs DG degree 0).
 using OffsetKey = std::array<long, 5>;
 
-/// Cells close enough to a cut that their bonds may cross it.
-std::vector<char> cells_near_cuts(const mesh::Mesh& mesh, double horizon) {
-  std::vector<char> near(static_cast<std::size_t>(mesh.num_cells()), 0);
-  if (mesh.cuts.empty()) return near;
-  for (Index c = 0; c < mesh.num_cells(); ++c) {
-    const Vec3 x = mesh.cell_centroid(c);
-    const double reach = horizon + mesh.cell_size(c) * std::sqrt(static_cast<double>(mesh.dim()));
-    for (const auto& cut : mesh.cuts)
-      if (std::abs((x - cut.origin).dot(cut.normal())) < reach) near[static_cast<std::size_t>(c)] = 1;
-  }
-  return near;
-}
-
 constexpr int max_points = 216;
 
 /// One cell's quadrature points, recomputed (the plain version); lives on the
@@ -89,7 +76,11 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
   const auto& pts = s.points;
   PERIMORPH_ASSERT(pts.per_cell <= max_points, "at most 6 non-local quadrature points per direction");
   const Index ncells = s.mesh.num_cells();
-  const std::vector<char> near_cut = cells_near_cuts(s.mesh, pts.bond_reach(s.kernel.horizon));
+  const std::optional<bonds::CutNeighborhood> own_cuts =
+      s.cuts != nullptr
+          ? std::nullopt
+          : std::optional<bonds::CutNeighborhood>(std::in_place, s.mesh, pts.bond_reach(s.kernel.horizon));
+  const bonds::CutNeighborhood& near_cut = s.cuts != nullptr ? *s.cuts : *own_cuts;
   const std::vector<double> ones(static_cast<std::size_t>(pts.per_cell), 1.0);
   auto cell_shape = [&](Index c) {
     peridynamics::CellPoints p;
@@ -112,9 +103,7 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
     return pts.cell_alpha_min[static_cast<std::size_t>(e)] >= 1.0 &&
            pts.cell_alpha_min[static_cast<std::size_t>(f)] >= 1.0;
   };
-  auto near = [&](Index e, Index f) {
-    return near_cut[static_cast<std::size_t>(e)] && near_cut[static_cast<std::size_t>(f)];
-  };
+  auto near = [&](Index e, Index f) { return !near_cut.near(e).empty() && !near_cut.near(f).empty(); };
   // The plain version: points recomputed per pair from the mesh, the rule and α.
   const bool plain = !options.precomputed_points;
   std::vector<fem::QuadraturePoint> rule;
@@ -141,7 +130,9 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
   };
   auto compute = [&](Index e, Index f, double* block) {
     const bool unit = options.unit_alpha_shortcut && unit_pair(e, f);
-    const auto cuts = near(e, f) ? std::span<const Cut>(s.mesh.cuts) : std::span<const Cut>{};
+    // The pieces a bond between e and f can cross (bonds::CutNeighborhood).
+    thread_local std::vector<Cut> cut_buffer;
+    const auto cuts = near(e, f) ? near_cut.near_pair(e, f, cut_buffer) : std::span<const Cut>{};
     if (!plain)
       return peridynamics::pair_stiffness<D>(cell_points(e), cell_points(f), e == f, s.kernel, cuts, unit,
                                              block, broken_in(e, f));

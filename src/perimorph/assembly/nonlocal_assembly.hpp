@@ -5,6 +5,7 @@
 // matrix is bit-identical for any thread count.
 
 #include "perimorph/assembly/inserter.hpp"
+#include "perimorph/bonds/cut_neighborhood.hpp"
 #include "perimorph/peridynamics/micromodulus.hpp"
 
 #include <cstddef>
@@ -43,6 +44,14 @@ struct NonlocalSpace {
   double scale = 1.0;
   /// Failed bonds, left out (non-owning; null: none). Pairs with one are never cached.
   const bonds::BrokenBonds* broken = nullptr;
+  /// The cuts near each cell for bonds of this space's reach (non-owning;
+  /// null: made from the mesh when needed). setup::Discretization keeps one.
+  const bonds::CutNeighborhood* cuts = nullptr;
+  /// The cuts a bond between points of cells e and f can cross (`buffer`
+  /// holds them when `cuts` is set; else all of the mesh's).
+  std::span<const Cut> cuts_near(Index e, Index f, std::vector<Cut>& buffer) const {
+    return cuts != nullptr ? cuts->near_pair(e, f, buffer) : std::span<const Cut>(mesh.cuts);
+  }
 };
 
 struct NonlocalStats {

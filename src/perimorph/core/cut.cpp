@@ -1,6 +1,6 @@
 #include "perimorph/core/cut.hpp"
 
-#include <Eigen/Dense>
+#include <Eigen/Geometry>
 
 #include <cmath>
 #include <utility>
@@ -14,14 +14,15 @@ Vec3 Cut::normal() const {
 }
 
 namespace {
-/// Coordinates (s, t) of p's projection on the cut in the basis (edge1, edge2).
+/// Coordinates (s, t) of p's projection on the cut in the basis (edge1, edge2):
+/// in 3D, with n = edge1 × edge2, s = ((p − o) × edge2)·n / |n|² and
+/// t = (edge1 × (p − o))·n / |n|² (the out-of-plane part of p − o drops out).
 std::pair<double, double> in_plane_coordinates(const Cut& cut, const Vec3& p) {
   const Vec3 r = p - cut.origin;
   if (cut.dim == 2) return {r.dot(cut.edge1) / cut.edge1.squaredNorm(), 0.0};
-  Eigen::Matrix2d g;
-  g << cut.edge1.dot(cut.edge1), cut.edge1.dot(cut.edge2), cut.edge2.dot(cut.edge1), cut.edge2.dot(cut.edge2);
-  const Eigen::Vector2d st = g.ldlt().solve(Eigen::Vector2d(r.dot(cut.edge1), r.dot(cut.edge2)));
-  return {st[0], st[1]};
+  const Vec3 n = cut.edge1.cross(cut.edge2);
+  const double nn = n.squaredNorm();
+  return {r.cross(cut.edge2).dot(n) / nn, cut.edge1.cross(r).dot(n) / nn};
 }
 }  // namespace
 

@@ -179,6 +179,7 @@ void place_alpha(Discretization& d, alpha::AlphaField alpha, const std::function
   std::vector<Vec3> reference;
   for (const auto& q : fem::gauss_legendre(dim, config.nonlocal.quadrature)) reference.push_back(q.xi);
   for (const auto& q : d.rule) reference.push_back(q.xi);
+  nl.cuts = bonds::CutNeighborhood(m, nl.points.bond_reach(nl.kernel.horizon));
   nl.graph = bonds::find_cell_neighbors(
       m, bonds::point_boxes(m, reference), nl.points.bond_reach(nl.kernel.horizon), [&](Index e, Index f) {
         return amax[static_cast<std::size_t>(e)] > 0.0 || amax[static_cast<std::size_t>(f)] > 0.0;

@@ -40,6 +40,7 @@ struct Discretization {
   assembly::NonlocalSpace nonlocal_space(const bonds::BrokenBonds* failed = nullptr) const {
     assembly::NonlocalSpace s{mesh, dofmap, nonlocal->points, nonlocal->graph, nonlocal->kernel};
     s.broken = failed;
+    s.cuts = &nonlocal->cuts;
     return s;
   }
   /// True if cell c carries local stiffness: not purely non-local, or

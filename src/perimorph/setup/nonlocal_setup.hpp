@@ -6,6 +6,7 @@
 #include "perimorph/alpha/alpha_field.hpp"
 #include "perimorph/assembly/morphed_stiffness.hpp"
 #include "perimorph/bonds/cell_graph.hpp"
+#include "perimorph/bonds/cut_neighborhood.hpp"
 #include "perimorph/bonds/nonlocal_points.hpp"
 #include "perimorph/casefile/case_config.hpp"
 #include "perimorph/peridynamics/micromodulus.hpp"
@@ -23,6 +24,7 @@ struct NonlocalModel {
   alpha::AlphaField alpha = alpha::AlphaField::constant(0.0);
   bonds::NonlocalPoints points;
   bonds::CellGraph graph;
+  bonds::CutNeighborhood cuts;  ///< the mesh's cuts near each cell, for bonds of points.bond_reach
   assembly::MorphedStiffness morph;
 };
 
