@@ -235,7 +235,7 @@ set = "top"
 
 std::string case_error(const std::string& text) {
   try {
-    setup::build_discretization(parse(text));
+    run::prepare_run(setup::build_discretization(parse(text)));
   } catch (const InputError& e) {
     return e.what();
   }
@@ -259,6 +259,10 @@ TEST(GmshCase, ErrorsNameTheKey) {
       case_error(head + "file = \"rectangle.msh\"\n[[region]]\nname = \"r\"\nset = \"core\"\n" + material);
   EXPECT_TRUE(contains(region, "no cell set \"core\"")) << region;
   EXPECT_TRUE(contains(region, "body")) << region;
+  const std::string set =
+      case_error(head + "file = \"rectangle.msh\"\n" + material + "[[dirichlet]]\nset = \"lft\"\nux = 0.0\n");
+  EXPECT_TRUE(contains(set, "no set named 'lft' (did you mean 'left'?)")) << set;
+  EXPECT_TRUE(contains(set, "Gmsh file's physical groups")) << set;
   try {
     parse(head + "file = \"rectangle.msh\"\ncells = [4, 4]\n" + material);
     ADD_FAILURE() << "cells with type = gmsh accepted";

@@ -54,8 +54,8 @@ std::vector<Index> set_dof_nodes(const Discretization& model, const std::string&
   } else {
     const auto names = mesh.set_names();
     throw InputError(fmt::format(
-        "{}: the mesh has no set named '{}'{}; its sets are {} (node and face sets of the box, cell set "
-        "\"all\", one cell set per [[region]], one node set per [[node_set]])",
+        "{}: the mesh has no set named '{}'{}; its sets are {} (those of the box or of the Gmsh file's "
+        "physical groups, cell set \"all\", one cell set per [[region]], one node set per [[node_set]])",
         where.describe(), set, did_you_mean(set, names), fmt::join(names, ", ")));
   }
   if (out.empty())
