@@ -23,6 +23,21 @@
 
 namespace perimorph::app {
 
+namespace {
+
+/// The model with every bond in its cell graph, for the commands that count
+/// or assemble bonds (info, ghost-forces, gc): a matrix-free case's run
+/// alone builds it without (setup::Discretization::nonlocal). The case's
+/// operator is checked all the same.
+perimorph::setup::Discretization model_with_bonds(const perimorph::casefile::CaseConfig& config) {
+  perimorph::setup::check_matrix_free(config);
+  perimorph::casefile::CaseConfig assembled = config;
+  assembled.solver.op = perimorph::casefile::SolverOperator::assembled;
+  return perimorph::setup::build_discretization(assembled);
+}
+
+}  // namespace
+
 int check(const std::string& path) {
   const auto config = perimorph::casefile::parse_case_file(path);
   const auto model = perimorph::setup::build_discretization(config);
@@ -68,7 +83,7 @@ std::unique_ptr<perimorph::la::PetscSession> quiet_petsc() {
 int info(const std::string& path) {
   const auto config = perimorph::casefile::parse_case_file(path);
   auto petsc = quiet_petsc();
-  const auto model = perimorph::setup::build_discretization(config);
+  const auto model = model_with_bonds(config);
   fmt::print("{}", perimorph::diagnostics::info_report(model, path));
   return 0;
 }
@@ -96,7 +111,7 @@ int ghost_forces(const std::string& path, const std::vector<double>& strain, con
     eps(0, 1) = eps(1, 0) = strain[5];
   }
   auto petsc = quiet_petsc();
-  const auto model = perimorph::setup::build_discretization(config);
+  const auto model = model_with_bonds(config);
   const auto g = perimorph::diagnostics::compute_ghost_forces(model, eps);
   const std::string dir = perimorph::run::resolve_output_directory(config, {out_dir, true});
   const std::string base =
@@ -112,7 +127,7 @@ int gc(const std::string& path, std::vector<double> point, std::vector<double> n
        std::optional<double> s_option) {
   const auto config = perimorph::casefile::parse_case_file(path);
   auto petsc = quiet_petsc();
-  const auto model = perimorph::setup::build_discretization(config);
+  const auto model = model_with_bonds(config);
   // One number per axis of the case at least (a shorter vector would put the
   // plane somewhere the user did not say); a z of 0 may follow in 2D.
   for (const auto& [name, v] : {std::pair{"--point", &point}, std::pair{"--normal", &normal}})

@@ -29,6 +29,7 @@
 #include "perimorph/setup/boundary_conditions.hpp"
 #include "perimorph/setup/discretization.hpp"
 #include "perimorph/system/constrained_system.hpp"
+#include "perimorph/system/matrix_free_stiffness.hpp"
 #include "perimorph/system/stiffness.hpp"
 
 #include <fmt/format.h>
@@ -70,19 +71,6 @@ std::string phase(const char* name, std::pair<double, double> t) {
   return fmt::format("\"{}\": {{\"wall\": {:.4f}, \"cpu\": {:.4f}}}", name, t.first, t.second);
 }
 
-/// The same case on a (2r + 3)³ grid of the same spacing, r = ⌈δ/h⌉: its
-/// centre cell has every offset of the horizon inside the grid.
-casefile::CaseConfig small_case(const casefile::CaseConfig& c, double h) {
-  casefile::CaseConfig s = c;
-  const auto r = static_cast<Index>(std::ceil(c.nonlocal.horizon / h));
-  const Index m = 2 * r + 3;
-  s.mesh.box.cells = {m, m, m};
-  s.mesh.box.upper = s.mesh.box.lower + Vec3::Constant(static_cast<double>(m) * h);
-  s.dirichlet.clear();
-  s.node_sets.clear();
-  return s;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -122,26 +110,18 @@ int main(int argc, char** argv) {
         fmt::format("\"dofs\": {}, \"iterations\": {}, \"relative_residual\": {:.3e}, \"nonzeros\": {:.0f}",
                     model.dofmap.num_dofs(), rep.iterations, rep.relative_residual, sys.A().nonzeros()));
   } else if (variant == "matrix-free") {
-    // The operator: blocks per offset from a small model with the full horizon.
-    const auto small = setup::build_discretization(small_case(config, h));
-    auto centre = [](const setup::Discretization& s) {
-      const Index m = s.mesh.structure->cells[0];
-      return (m / 2) * (1 + m + m * m);
-    };
-    assembly::OffsetBlocks blocks = assembly::offset_blocks(small.nonlocal_space(), centre(small));
-    const std::size_t offsets = blocks.offsets.size();
-    out.push_back(phase("offset_blocks", clock.lap()));
     // The preconditioner: the same operator with a short horizon (R h, the
-    // kernel calibrated for it), its blocks from a small model too, assembled
-    // on its own pattern. The dof map and the Dirichlet data from the short
-    // model (its cell graph is small).
+    // kernel calibrated for it), assembled on its own pattern. The dof map
+    // and the Dirichlet data from the short model (its cell graph is small);
+    // both operators' blocks from a patch of the grid (system/matrix_free_stiffness.hpp).
     casefile::CaseConfig short_config = config;
     short_config.nonlocal.horizon = short_factor * h;
-    const auto short_small = setup::build_discretization(small_case(short_config, h));
-    assembly::OffsetBlocks short_blocks =
-        assembly::offset_blocks(short_small.nonlocal_space(), centre(short_small));
     const auto model = setup::build_discretization(short_config);
     out.push_back(phase("discretization", clock.lap()));
+    assembly::OffsetBlocks blocks = system::grid_offset_blocks(config, *model.mesh.structure);
+    assembly::OffsetBlocks short_blocks = system::grid_offset_blocks(short_config, *model.mesh.structure);
+    const std::size_t offsets = blocks.offsets.size();
+    out.push_back(phase("offset_blocks", clock.lap()));
     const auto& layout = *model.mesh.structure;
     std::vector<Index> node_of_cell(static_cast<std::size_t>(model.mesh.num_cells()));
     for (Index c = 0; c < model.mesh.num_cells(); ++c)

@@ -16,12 +16,15 @@ core; wall time to solution) stand beside ours.
 
     /usr/bin/python3 bench/run_p4_bench.py [--n 10 20 30 40 50] [--build build] [--threads 1]
     /usr/bin/python3 bench/run_p4_bench.py --solver matrix-free
+    /usr/bin/python3 bench/run_p4_bench.py --solver run-matrix-free
 
 Writes bench/results/p4_peridigm.json, docs/benchmarks/p4-peridigm.md and docs/benchmarks/p4-peridigm.png.
 With --solver matrix-free (issue 16 item 3) it runs bench/p4_solver_bench instead of `perimorph run`: the
 non-local operator applied without a matrix (one 3×3 block per grid offset), CG preconditioned by GAMG on
 the same problem with a short horizon (1.5 h); JSON bench/results/p4_matrix_free.json, and the report gets a
-second table (both tables are written from the two JSON files).
+second table (both tables are written from the two JSON files). With --solver run-matrix-free it runs
+`perimorph run` on the case with [solver] operator = "matrix-free" (the same operator and preconditioner
+inside the program); JSON bench/results/p4_run_matrix_free.json, a third table.
 """
 import argparse
 import csv
@@ -56,7 +59,7 @@ MATRIX_FREE_PETSC_OPTIONS = ("-ksp_type cg -ksp_norm_type unpreconditioned -pc_t
                              "-pc_hypre_boomeramg_nodal_coarsen 6 -pc_hypre_boomeramg_vec_interp_variant 2")
 
 
-def case_text(n):
+def case_text(n, solver_lines='petsc_options = "-ksp_type cg -pc_type gamg"'):
     L = float(n)
     u = EPS * L / 2
     return f"""# P4 (BENCHMARKS.md): written by bench/run_p4_bench.py
@@ -105,7 +108,7 @@ uy = 0.0
 uz = 0.0
 
 [solver]
-petsc_options = "-ksp_type cg -pc_type gamg"
+{solver_lines}
 rtol = 1e-8
 
 [output]
@@ -193,7 +196,12 @@ def run_one(n, args, work):
     os.makedirs(d, exist_ok=True)
     case = os.path.join(d, "case.toml")
     with open(case, "w") as f:
-        f.write(case_text(n))
+        if args.solver == "run-matrix-free":
+            # `perimorph run` with [solver] operator = "matrix-free" (system/matrix_free_stiffness.hpp).
+            f.write(case_text(n, f'operator = "matrix-free"\npreconditioner_horizon = {args.short}\n'
+                                 f'petsc_options = "{args.petsc_options}"'))
+        else:
+            f.write(case_text(n))
     exe = os.path.join(args.build, "apps", "perimorph")
     env = dict(os.environ, OMP_NUM_THREADS=str(args.threads))
     info = subprocess.run([exe, "info", case], capture_output=True, text=True, env=env, check=True).stdout
@@ -235,6 +243,8 @@ def run_one(n, args, work):
         "perimorph_reaction_x": float(row["reaction_right_x"]) if "reaction_right_x" in row else None,
         "peridigm_standard_s": PERIDIGM_STANDARD.get(n), "peridigm_matrix_free_s": PERIDIGM_MATRIX_FREE.get(n),
     }
+    if args.solver == "run-matrix-free":
+        res.update({"petsc_options": args.petsc_options, "short_horizon": args.short})
     if n <= args.reference_max_n:
         ref, cg_info = reference_solve(n, u, free)
         res["reference_max_rel_diff"] = float(np.abs(u - ref).max() / np.abs(ref).max())
@@ -338,6 +348,34 @@ def matrix_free_section(mf, meta):
     return lines
 
 
+def run_matrix_free_section(rows, meta):
+    lines = [
+        "",
+        "## Matrix-free in `perimorph run`",
+        "",
+        f"Run {meta['date']} at commit {meta['commit']}, `OMP_NUM_THREADS={meta['threads']}` "
+        "(`/usr/bin/python3 bench/run_p4_bench.py --solver run-matrix-free`, JSON "
+        "`bench/results/p4_run_matrix_free.json`). The program itself on the same case with `[solver] operator = "
+        f"\"matrix-free\"`, `preconditioner_horizon = {rows[0]['short_horizon']}` and `petsc_options = "
+        f"\"{rows[0]['petsc_options']}\"` (docs/case-file.md): the operator and preconditioner of the section "
+        "above inside the run (case file, set-up without the cell graph, solve, reactions and energies from "
+        "matrix-free products, CSV and VTU written), measured as the assembled runs are.",
+        "",
+        "| N | dofs | wall s | CPU s | solve s (PCSetUp) | peak GB | Krylov its | Peridigm matrix-free s | "
+        "speed-up (CPU vs matrix-free) | free force / reaction | vs independent solve | load before → after |",
+        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|",
+    ]
+    for r in rows:
+        pmf = r["peridigm_matrix_free_s"]
+        ref = f"{r['reference_max_rel_diff']:.1e}" if "reference_max_rel_diff" in r else "—"
+        lines.append(
+            f"| {r['N']} | {r['dofs']:,} | {r['wall_s']:.2f} | {r['cpu_s']:.2f} | {r['ksp_solve_s']:.2f} "
+            f"({r['pc_setup_s']:.2f}) | {r['peak_rss_gb']:.2f} | {r['krylov_iterations']} | {pmf or '—'} | "
+            f"{pmf / r['cpu_s']:.1f}× | {r['free_force_over_reaction']:.1e} | {ref} | "
+            f"{' '.join(r['load_before'])} → {' '.join(r['load_after'])} |")
+    return lines
+
+
 def write_report(results, meta, md_path, png_path):
     import matplotlib
     matplotlib.use("Agg")
@@ -414,6 +452,10 @@ def write_report(results, meta, md_path, png_path):
     mf = json.load(open(mf_path)) if os.path.exists(mf_path) else None
     if mf:
         lines += matrix_free_section(mf["results"], mf["meta"])
+    run_mf_path = os.path.join(ROOT, "bench", "results", "p4_run_matrix_free.json")
+    run_mf = json.load(open(run_mf_path)) if os.path.exists(run_mf_path) else None
+    if run_mf:
+        lines += run_matrix_free_section(run_mf["results"], run_mf["meta"])
     notes = os.path.join(ROOT, "bench", "p4_notes.md")
     if os.path.exists(notes):
         lines += ["", open(notes).read().rstrip()]
@@ -456,14 +498,15 @@ def main():
     p.add_argument("--regenerate", action="store_true",
                    help="write the table and plot from the JSON without running anything")
     p.add_argument("--md", default=os.path.join(ROOT, "docs", "benchmarks", "p4-peridigm.md"))
-    p.add_argument("--solver", choices=["assembled", "matrix-free"], default="assembled",
-                   help="assembled: `perimorph run`; matrix-free: bench/p4_solver_bench (issue 16 item 3)")
+    p.add_argument("--solver", choices=["assembled", "matrix-free", "run-matrix-free"], default="assembled",
+                   help="assembled: `perimorph run`; matrix-free: bench/p4_solver_bench (issue 16 item 3); "
+                        "run-matrix-free: `perimorph run` with [solver] operator = \"matrix-free\"")
     p.add_argument("--short", type=float, default=1.5, help="matrix-free: the preconditioner's horizon / h")
     p.add_argument("--petsc-options", default=MATRIX_FREE_PETSC_OPTIONS,
                    help="matrix-free: PETSc options of the solve (default: CG, BoomerAMG as measured best)")
     args = p.parse_args()
-    if args.solver == "matrix-free" and args.json == p.get_default("json"):
-        args.json = os.path.join(ROOT, "bench", "results", "p4_matrix_free.json")
+    if args.solver != "assembled" and args.json == p.get_default("json"):
+        args.json = os.path.join(ROOT, "bench", "results", f"p4_{args.solver.replace('-', '_')}.json")
     commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True).stdout.strip()
     meta = {"date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),

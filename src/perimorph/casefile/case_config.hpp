@@ -211,11 +211,23 @@ struct LoadingSpec {
   Vec3 body_force = Vec3::Zero();  ///< force per volume, scaled by the load factor
 };
 
+/// How the stiffness reaches the solver: `assembled` (a sparse matrix), or
+/// `matrix_free` (the non-local operator of a structured grid applied from
+/// one block per grid offset, preconditioned by an assembled short-horizon
+/// operator; system/matrix_free_stiffness.hpp has the cases it covers).
+enum class SolverOperator { assembled, matrix_free };
+
 /// [solver]
 struct SolverSpec {
   std::string petsc_options;  ///< e.g. "-ksp_type preonly -pc_type cholesky"
   double rtol = 1e-10;
   int max_iterations = 10000;
+  SolverOperator op = SolverOperator::assembled;  ///< key `operator`
+  /// Matrix-free: the horizon of the preconditioning operator, in units of the
+  /// largest cell edge (key `preconditioner_horizon`).
+  double preconditioner_horizon = 1.5;
+  SourceLocation where;  ///< the [solver] table (or the file when absent)
+  SourceLocation operator_where;
 };
 
 /// [output]

@@ -1,5 +1,7 @@
 #include "perimorph/casefile/parse_run.hpp"
 
+#include "perimorph/casefile/choose_option.hpp"
+
 #include <fmt/format.h>
 
 #include <cctype>
@@ -46,7 +48,9 @@ void read_loading(const Table& root, CaseConfig& c) {
 void read_solver(const Table& root, CaseConfig& c) {
   const auto t = root.table("solver");
   if (!t) return;
-  t->check_keys({"petsc_options", "rtol", "max_iterations"});
+  t->check_keys({"petsc_options", "rtol", "max_iterations", "operator", "preconditioner_horizon"});
+  c.solver.where = t->where();
+  c.solver.operator_where = t->where();
   if (auto v = t->get("petsc_options")) {
     c.solver.petsc_options = v->string();
     // The words as PETSc (and la::add_options) reads them: an option is '-'
@@ -75,6 +79,22 @@ void read_solver(const Table& root, CaseConfig& c) {
                           c.solver.rtol));
   }
   if (auto v = t->get("max_iterations")) c.solver.max_iterations = v->integer(1, kMaxInt);
+  if (auto v = t->get("operator")) {
+    static const detail::Options<SolverOperator> kOperators{{"assembled", SolverOperator::assembled},
+                                                            {"matrix-free", SolverOperator::matrix_free}};
+    c.solver.op = detail::choose(*v, kOperators, "operator");
+    c.solver.operator_where = v->where();
+  }
+  if (auto v = t->get("preconditioner_horizon")) {
+    c.solver.preconditioner_horizon = v->number();
+    // At least the face neighbours (1 h), below the horizons where the
+    // short operator would cost what the full one does.
+    if (!(c.solver.preconditioner_horizon >= 1.0 && c.solver.preconditioner_horizon <= 10.0))
+      v->fail(
+          fmt::format("the preconditioner's horizon is in cell sizes and must lie in [1, 10] (it must "
+                      "reach the face neighbours; 1.5 reaches the edge neighbours too), got {}",
+                      c.solver.preconditioner_horizon));
+  }
 }
 
 void read_output(const Table& root, CaseConfig& c) {

@@ -16,7 +16,7 @@ namespace {
 
 /// ½ uᵀ K u.
 double strain_energy(const system::ConstrainedSystem& system, const la::Vector& u, la::Vector& Ku) {
-  system.K().mult(u, Ku);
+  system.apply_K(u, Ku);
   const std::vector<double> a = u.to_std(), b = Ku.to_std();
   double e = 0.0;
   for (std::size_t k = 0; k < a.size(); ++k) e += 0.5 * a[k] * b[k];
@@ -58,7 +58,7 @@ void QuasiStaticRun::adapt_for_next() {
   u_prev_ = state_.u;
   la::Vector Ku(disc_->dofmap.num_dofs(), disc_->dim());
   u_.assign(u_prev_);
-  system_->K().mult(u_, Ku);
+  system_->apply_K(u_, Ku);
   fint_prev_ = Ku.to_std();
 }
 

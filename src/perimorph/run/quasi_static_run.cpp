@@ -54,12 +54,17 @@ QuasiStaticRun::QuasiStaticRun(const setup::Discretization& disc, const RunOptio
     setup_ = prepare_run(disc);
     find_components();
 
-    progress_->phase("assembly");
-    system::AssembledStiffness assembled = system::assemble_stiffness(disc);
-
-    progress_->phase("solver set-up");
-    system_ = std::make_unique<system::ConstrainedSystem>(disc, std::move(assembled.K), std::move(setup_.bc),
-                                                          setup_.F);
+    if (config.solver.op == casefile::SolverOperator::matrix_free) {
+      progress_->phase("matrix-free operator");
+      system_ = std::make_unique<system::ConstrainedSystem>(disc, system::build_matrix_free_stiffness(disc),
+                                                            std::move(setup_.bc), setup_.F);
+    } else {
+      progress_->phase("assembly");
+      system::AssembledStiffness assembled = system::assemble_stiffness(disc);
+      progress_->phase("solver set-up");
+      system_ = std::make_unique<system::ConstrainedSystem>(disc, std::move(assembled.K),
+                                                            std::move(setup_.bc), setup_.F);
+    }
     for (const auto& s : setup_.sets) summary_.reaction_names.push_back(s.name);
     output_ = std::make_unique<RunOutput>(disc, summary_.output_directory, basename_of(config),
                                           summary_.reaction_names);
@@ -126,7 +131,7 @@ void QuasiStaticRun::solve() {
   if (rec_.break_iterations == 0) {
     // Work of all external forces (applied + reactions = K u at equilibrium)
     // on the elastic step from the last state.
-    system_->K().mult(u_, internal_);
+    system_->apply_K(u_, internal_);
     state_.u = u_.to_std();
     fint_ = internal_.to_std();
     for (std::size_t k = 0; k < state_.u.size(); ++k)
@@ -214,7 +219,7 @@ void QuasiStaticRun::record(bool force_vtu) {
   const std::vector<double>& uv = state_.u;
   const std::vector<double>& F = system_->applied_force();
   if ((fracture_ || damage_) && rec_.break_iterations > 0) {
-    system_->K().mult(u_, internal_);
+    system_->apply_K(u_, internal_);
     fint_ = internal_.to_std();
   }
   if (damage_) {

@@ -180,10 +180,16 @@ void place_alpha(Discretization& d, alpha::AlphaField alpha, const std::function
   for (const auto& q : fem::gauss_legendre(dim, config.nonlocal.quadrature)) reference.push_back(q.xi);
   for (const auto& q : d.rule) reference.push_back(q.xi);
   nl.cuts = bonds::CutNeighborhood(m, nl.points.bond_reach(nl.kernel.horizon));
-  nl.graph = bonds::find_cell_neighbors(
-      m, bonds::point_boxes(m, reference), nl.points.bond_reach(nl.kernel.horizon), [&](Index e, Index f) {
-        return amax[static_cast<std::size_t>(e)] > 0.0 || amax[static_cast<std::size_t>(f)] > 0.0;
-      });
+  // Matrix-free (α ≡ 1, check_matrix_free): no pair is ever assembled, the
+  // operator's blocks come from a small model (system/matrix_free_stiffness.hpp);
+  // every cell purely non-local needs no neighbour for the morphed C (= 0).
+  if (config.solver.op == casefile::SolverOperator::matrix_free)
+    nl.graph = bonds::CellGraph::diagonal(m.num_cells());
+  else
+    nl.graph = bonds::find_cell_neighbors(
+        m, bonds::point_boxes(m, reference), nl.points.bond_reach(nl.kernel.horizon), [&](Index e, Index f) {
+          return amax[static_cast<std::size_t>(e)] > 0.0 || amax[static_cast<std::size_t>(f)] > 0.0;
+        });
   phase("morphed stiffness");
   d.stiffness = fem::ConstitutiveField(dim, m.num_cells(), static_cast<int>(d.rule.size()));
   nl.morph = assembly::morph_stiffness(m, d.rule, nl.points, nl.graph, nl.kernel, nl.alpha, nl.material.C0,
@@ -214,10 +220,51 @@ void place_alpha(Discretization& d, alpha::AlphaField alpha, const std::function
 
 }  // namespace
 
+void check_matrix_free(const casefile::CaseConfig& config) {
+  if (config.solver.op != casefile::SolverOperator::matrix_free) return;
+  std::string why;
+  if (config.mesh.kind != casefile::MeshKind::box)
+    why = "the mesh is not a box (a Gmsh mesh has no grid)";
+  else if (!config.mesh.holes.empty())
+    why = fmt::format("the mesh has a hole (line {})", config.mesh.holes.front().where.line);
+  else if (!config.mesh.cuts.empty())
+    why = fmt::format("the mesh has a pre-crack cut (line {}): the bonds across it are missing",
+                      config.mesh.cuts.front().where.line);
+  else if (!config.nonlocal.enabled)
+    why = "there is no [nonlocal] section";
+  else if (config.materials.size() != 1)
+    why = fmt::format("the case has {} materials (the grid must be one material)", config.materials.size());
+  else if (config.nonlocal.quadrature != 1)
+    why = fmt::format("[nonlocal] quadrature is {}, not 1 (one non-local point per cell)",
+                      config.nonlocal.quadrature);
+  else if (config.nonlocal.discretization != casefile::Discretization::discontinuous_constant)
+    why = "[nonlocal] discretization is not \"discontinuous-constant\" (one node per cell)";
+  else if (config.alpha.value != 1.0 || !config.alpha.regions.empty())
+    why =
+        config.alpha.regions.empty()
+            ? fmt::format("[alpha] value is {}, not 1 (the operator is purely non-local)", config.alpha.value)
+            : fmt::format("[[alpha.region]] at line {} makes alpha vary",
+                          config.alpha.regions.front().where.line);
+  else if (config.fracture.enabled)
+    why = "the case has [fracture]: failed bonds change the operator";
+  else if (config.has_damage())
+    why = "a material has [material.damage]";
+  else if (config.adaptivity.enabled)
+    why = "the case has [adaptivity]";
+  if (!why.empty())
+    throw InputError(fmt::format(
+        "{}: operator = \"matrix-free\" covers the elastic non-local operator of a box grid with alpha = 1 "
+        "everywhere and [nonlocal] discretization = \"discontinuous-constant\" (no hole, cut, fracture, "
+        "damage or adaptivity), where every bond depends only on its grid offset; {}. Use operator = "
+        "\"assembled\" (the default)",
+        config.solver.operator_where.describe(), why));
+}
+
 Discretization build_discretization(const casefile::CaseConfig& config, const PhaseCallback& on_phase) {
   auto phase = [&](const char* name) {
     if (on_phase) on_phase(name);
   };
+  check_matrix_free(config);
   phase("mesh");
   mesh::Mesh m = build_mesh(config);
   const int dim = m.dim();

@@ -29,7 +29,9 @@ struct Discretization {
   /// damage lowers it by d C₀ (damaged_stiffness).
   fem::ConstitutiveField stiffness;
   double scale = 1.0;  ///< thickness (2D) or cross-section (1D)
-  /// The non-local part, when the case has a [nonlocal] section.
+  /// The non-local part, when the case has a [nonlocal] section. With
+  /// [solver] operator = "matrix-free" its cell graph is the diagonal one
+  /// (no bond is assembled; system/matrix_free_stiffness.hpp).
   std::optional<NonlocalModel> nonlocal;
   /// The local damage, when a material has [material.damage].
   std::optional<DamageModel> damage;
@@ -64,6 +66,13 @@ Voigt6 material_stiffness(const casefile::MaterialSpec& m);
 /// Called with the name of each set-up phase as it begins ("mesh", "bond
 /// graph", ...), for a progress display.
 using PhaseCallback = std::function<void(const std::string& phase)>;
+
+/// Throws InputError, naming the [solver] `operator` key and the reason, for a
+/// case with operator = "matrix-free" that the matrix-free operator does not
+/// cover (it needs a box grid without holes or cuts, [nonlocal] with
+/// discretization = "discontinuous-constant", α ≡ 1, no fracture, damage or
+/// adaptivity). Called by build_discretization.
+void check_matrix_free(const casefile::CaseConfig& config);
 
 /// Builds everything; throws InputError naming the case-file key for problems
 /// found only now (a cut off the element faces, an inadmissible material, a

@@ -4,6 +4,7 @@
 #include "perimorph/assembly/local_assembly.hpp"
 #include "perimorph/assembly/nonlocal_assembly.hpp"
 #include "perimorph/core/error.hpp"
+#include "perimorph/la/shell_matrix.hpp"
 
 #include <fmt/format.h>
 
@@ -11,6 +12,38 @@
 #include <cmath>
 
 namespace perimorph::system {
+
+/// The matrix-free operators and what they read (a stable address for the
+/// shells' callbacks).
+struct ConstrainedSystem::MatrixFree {
+  MatrixFree(MatrixFreeStiffness s, std::vector<char> prescribed, int dim)
+      : stiffness(std::move(s)),
+        fixed(std::move(prescribed)),
+        masked(fixed.size()),
+        K(static_cast<Index>(fixed.size()), dim,
+          [this](std::span<const double> x, std::span<double> y) { stiffness.K.apply(x, y); }),
+        A(static_cast<Index>(fixed.size()), dim, [this](std::span<const double> x, std::span<double> y) {
+          for (std::size_t k = 0; k < masked.size(); ++k) masked[k] = fixed[k] ? 0.0 : x[k];
+          stiffness.K.apply(masked, y);
+          for (std::size_t k = 0; k < masked.size(); ++k)
+            if (fixed[k]) y[k] = x[k];
+        }) {}
+  MatrixFreeStiffness stiffness;  ///< its preconditioner constrained in place
+  std::vector<char> fixed;        ///< 1 on the prescribed dofs
+  std::vector<double> masked;     ///< scratch of A's product
+  la::ShellMatrix K, A;
+};
+
+namespace {
+
+la::Matrix no_matrix(int dim) {
+  assembly::SparsityPattern p;
+  p.block_size = dim;
+  p.row_offsets = {0};
+  return la::Matrix(p);
+}
+
+}  // namespace
 
 ConstrainedSystem::ConstrainedSystem(const setup::Discretization& model, la::Matrix K,
                                      setup::DirichletData bc, std::span<const double> F)
@@ -21,8 +54,40 @@ ConstrainedSystem::ConstrainedSystem(const setup::Discretization& model, la::Mat
       applied_force_(F.begin(), F.end()),
       rhs_unit_(model.dofmap.num_dofs(), model.dim()),
       rhs_(model.dofmap.num_dofs(), model.dim()) {
+  constrain_rhs(F);
+  initial_diagonal_ = A_.diagonal();
+}
+
+ConstrainedSystem::ConstrainedSystem(const setup::Discretization& model, MatrixFreeStiffness K,
+                                     setup::DirichletData bc, std::span<const double> F)
+    : model_(model),
+      K_(no_matrix(model.dim())),
+      A_(no_matrix(model.dim())),
+      bc_(std::move(bc)),
+      applied_force_(F.begin(), F.end()),
+      rhs_unit_(model.dofmap.num_dofs(), model.dim()),
+      rhs_(model.dofmap.num_dofs(), model.dim()) {
   const Index n = model.dofmap.num_dofs();
-  la::Vector g(n, model.dim());
+  std::vector<char> fixed(static_cast<std::size_t>(n), 0);
+  for (Index d : bc_.dofs) fixed[static_cast<std::size_t>(d)] = 1;
+  free_ = std::make_unique<MatrixFree>(std::move(K), std::move(fixed), model.dim());
+  constrain_rhs(F);
+  // The eliminated rows and columns of the preconditioner are zero blocks but
+  // for their diagonal: dropped, so that its AMG sees only the coupling.
+  la::Matrix& P = free_->stiffness.preconditioner;
+  la::Vector g(n, model.dim()), scratch(n, model.dim());
+  P.eliminate_dirichlet(bc_.dofs, g, scratch);
+  P = P.without_zero_blocks();
+  P.set_spd();
+  initial_diagonal_ = P.diagonal();
+}
+
+ConstrainedSystem::~ConstrainedSystem() = default;
+ConstrainedSystem::ConstrainedSystem(ConstrainedSystem&&) noexcept = default;
+
+void ConstrainedSystem::constrain_rhs(std::span<const double> F) {
+  const Index n = model_.dofmap.num_dofs();
+  la::Vector g(n, model_.dim());
   std::vector<double> gv(static_cast<std::size_t>(n), 0.0);
   prescribed_.assign(static_cast<std::size_t>(n), std::nan(""));
   for (std::size_t k = 0; k < bc_.dofs.size(); ++k) {
@@ -31,9 +96,24 @@ ConstrainedSystem::ConstrainedSystem(const setup::Discretization& model, la::Mat
   }
   g.assign(gv);
   rhs_unit_.assign(F);
+  if (free_) {
+    // b = F − K g on the free rows, g on the prescribed ones.
+    la::Vector Kg(n, model_.dim());
+    free_->K.mult(g, Kg);
+    std::vector<double> b = Kg.to_std();
+    for (std::size_t k = 0; k < b.size(); ++k) b[k] = free_->fixed[k] ? gv[k] : F[k] - b[k];
+    rhs_unit_.assign(b);
+    return;
+  }
   A_.eliminate_dirichlet(bc_.dofs, g, rhs_unit_);
   A_.set_spd();
-  initial_diagonal_ = A_.diagonal();
+}
+
+void ConstrainedSystem::apply_K(const la::Vector& x, la::Vector& y) const {
+  if (free_)
+    free_->K.mult(x, y);
+  else
+    K_.mult(x, y);
 }
 
 void ConstrainedSystem::attach_solver() {
@@ -43,10 +123,16 @@ void ConstrainedSystem::attach_solver() {
 }
 
 void ConstrainedSystem::operator_changed() {
-  if (solver_) solver_->set_operator(A_, model_.dofmap.node_coordinates(), model_.dim());
+  if (!solver_) return;
+  if (free_)
+    solver_->set_operators(free_->A, free_->stiffness.preconditioner, model_.dofmap.node_coordinates(),
+                           model_.dim());
+  else
+    solver_->set_operator(A_, model_.dofmap.node_coordinates(), model_.dim());
 }
 
 void ConstrainedSystem::downdate(std::span<const Index> dofs, std::span<const double> block) {
+  PERIMORPH_ASSERT(!free_, "a matrix-free system cannot change (setup::check_matrix_free)");
   const std::size_t m = dofs.size();
   negative_.resize(m * m);
   for (std::size_t i = 0; i < m * m; ++i) negative_[i] = -block[i];
@@ -90,6 +176,7 @@ void ConstrainedSystem::set_reference_diagonal(std::vector<double> diagonal) {
 }
 
 std::vector<Index> ConstrainedSystem::without_stiffness(std::span<const Index> dofs) const {
+  PERIMORPH_ASSERT(!free_, "a matrix-free system cannot change (setup::check_matrix_free)");
   const std::vector<double> diag = A_.diagonal_at(dofs);
   std::vector<Index> out;
   for (std::size_t k = 0; k < dofs.size(); ++k) {
@@ -100,6 +187,7 @@ std::vector<Index> ConstrainedSystem::without_stiffness(std::span<const Index> d
 }
 
 void ConstrainedSystem::hold(std::span<const Index> dofs, bool zero_rhs) {
+  PERIMORPH_ASSERT(!free_, "a matrix-free system cannot change (setup::check_matrix_free)");
   if (dofs.empty()) return;
   for (Index d : dofs) {
     const Index one[1] = {d};
@@ -151,6 +239,7 @@ void downdate_cells(ConstrainedSystem& system, const setup::Discretization& disc
 
 void ConstrainedSystem::reassemble(const setup::Discretization& before, const setup::Discretization& after,
                                    std::span<const Index> cells, const bonds::BrokenBonds* failed) {
+  PERIMORPH_ASSERT(!free_, "a matrix-free system cannot change (setup::check_matrix_free)");
   const Index ncells = before.mesh.num_cells();
   std::vector<char> in(static_cast<std::size_t>(ncells), 0);
   for (Index c : cells) in[static_cast<std::size_t>(c)] = 1;
@@ -194,6 +283,15 @@ la::SolveReport ConstrainedSystem::solve(double lambda, la::Vector& u) {
   PERIMORPH_ASSERT(solver_ != nullptr, "ConstrainedSystem::solve before attach_solver");
   rhs_.set_all(0.0);
   rhs_.axpy(lambda, rhs_unit_);
+  if (free_) {
+    // A's prescribed rows are the identity, decoupled: started exact there, CG
+    // keeps them exact (a residual relative to ||b|| would let them err by
+    // the stiffness' scale).
+    std::vector<double> start = u.to_std();
+    for (std::size_t k = 0; k < start.size(); ++k)
+      if (free_->fixed[k]) start[k] = lambda * prescribed_[k];
+    u.assign(start);
+  }
   return solver_->solve(rhs_, u);
 }
 

@@ -6,12 +6,16 @@
 // data; and the solver on A. The load enters linearly: the system at load
 // factor λ is A u = λ rhs_unit. Bond failure changes it in place through
 // downdate and hold (BondFailure::apply), then calls operator_changed().
+// A matrix-free system (system/matrix_free_stiffness.hpp) has no K or A: it
+// applies them (apply_K, the solve) and supports none of the changes.
 
+#include "perimorph/core/error.hpp"
 #include "perimorph/la/linear_solver.hpp"
 #include "perimorph/la/matrix.hpp"
 #include "perimorph/la/vector.hpp"
 #include "perimorph/setup/boundary_conditions.hpp"
 #include "perimorph/setup/discretization.hpp"
+#include "perimorph/system/matrix_free_stiffness.hpp"
 
 #include <cmath>
 #include <memory>
@@ -24,7 +28,7 @@ class BrokenBonds;
 namespace perimorph::core {
 class BinaryWriter;
 class BinaryReader;
-}
+}  // namespace perimorph::core
 
 namespace perimorph::system {
 
@@ -34,6 +38,16 @@ class ConstrainedSystem {
   /// `F` at load factor 1. No solver yet (attach_solver).
   ConstrainedSystem(const setup::Discretization& model, la::Matrix K, setup::DirichletData bc,
                     std::span<const double> F);
+  /// The same with K applied without a matrix: A x is K x on the free rows and
+  /// columns and x on the prescribed ones (eliminate_dirichlet's convention),
+  /// solved by the case's Krylov method preconditioned from the short-horizon
+  /// matrix, constrained likewise.
+  ConstrainedSystem(const setup::Discretization& model, MatrixFreeStiffness K, setup::DirichletData bc,
+                    std::span<const double> F);
+  ~ConstrainedSystem();
+  ConstrainedSystem(ConstrainedSystem&&) noexcept;
+  ConstrainedSystem(const ConstrainedSystem&) = delete;
+  ConstrainedSystem& operator=(const ConstrainedSystem&) = delete;
 
   /// A system as `save` wrote it (a checkpoint, run/checkpoint.hpp): K, A,
   /// rhs_unit, the reference diagonal and the downdate count exactly as they
@@ -51,6 +65,10 @@ class ConstrainedSystem {
   /// Solves A u = λ rhs_unit (u: the initial guess in, the solution out).
   /// Throws SolverError (la::LinearSolver). Requires attach_solver.
   la::SolveReport solve(double lambda, la::Vector& u);
+  /// y ← K x (the unconstrained stiffness: internal forces, reactions, energies).
+  void apply_K(const la::Vector& x, la::Vector& y) const;
+  /// True for a matrix-free system (no K(), A(), downdate, hold or reassemble).
+  bool matrix_free() const { return free_ != nullptr; }
   /// The attached solver (null before attach_solver).
   const la::LinearSolver* solver() const { return solver_.get(); }
   /// Lets the attached solver fall back to a direct solve that holds null
@@ -105,10 +123,10 @@ class ConstrainedSystem {
   /// True if the dof is prescribed.
   bool prescribed(Index dof) const { return !std::isnan(prescribed_[static_cast<std::size_t>(dof)]); }
 
-  la::Matrix& K() { return K_; }
-  const la::Matrix& K() const { return K_; }
-  la::Matrix& A() { return A_; }
-  const la::Matrix& A() const { return A_; }
+  la::Matrix& K() { return assembled(K_); }
+  const la::Matrix& K() const { return assembled(K_); }
+  la::Matrix& A() { return assembled(A_); }
+  const la::Matrix& A() const { return assembled(A_); }
   la::Vector& rhs_unit() { return rhs_unit_; }
   const la::Vector& rhs_unit() const { return rhs_unit_; }
   const setup::DirichletData& bc() const { return bc_; }
@@ -116,7 +134,17 @@ class ConstrainedSystem {
   const std::vector<double>& applied_force() const { return applied_force_; }
 
  private:
+  struct MatrixFree;
+  template <class M>
+  M& assembled(M& matrix) const {
+    PERIMORPH_ASSERT(!free_, "a matrix-free system has no assembled matrix");
+    return matrix;
+  }
+  /// rhs_unit and the prescribed values at load factor 1 from bc_ and F.
+  void constrain_rhs(std::span<const double> F);
+
   const setup::Discretization& model_;
+  std::unique_ptr<MatrixFree> free_;  ///< matrix-free only
   la::Matrix K_, A_;
   setup::DirichletData bc_;
   std::vector<double> applied_force_;

@@ -44,6 +44,11 @@ la::Matrix load_matrix(core::BinaryReader& in, Index rows) {
 }  // namespace
 
 void ConstrainedSystem::save(core::BinaryWriter& out) const {
+  if (free_) {
+    // Nothing changes a matrix-free system: the case rebuilds it.
+    out.tag("matrix-free system");
+    return;
+  }
   out.tag("system");
   save_matrix(out, K_);
   save_matrix(out, A_);
@@ -54,8 +59,13 @@ void ConstrainedSystem::save(core::BinaryWriter& out) const {
 }
 
 std::unique_ptr<ConstrainedSystem> ConstrainedSystem::restored(const setup::Discretization& model,
-                                                               setup::DirichletData bc, std::span<const double> F,
+                                                               setup::DirichletData bc,
+                                                               std::span<const double> F,
                                                                core::BinaryReader& in) {
+  if (model.config.solver.op == casefile::SolverOperator::matrix_free) {
+    in.expect("matrix-free system");
+    return std::make_unique<ConstrainedSystem>(model, build_matrix_free_stiffness(model), std::move(bc), F);
+  }
   in.expect("system");
   const Index n = model.dofmap.num_dofs();
   la::Matrix K = load_matrix(in, n);
