@@ -239,6 +239,23 @@ TEST_F(RestartFracture, NeedsTheOutputItContinues) {
   EXPECT_THROW(run::run_static(*disc_, options), InputError);
 }
 
+/// Runs `disc` with a checkpoint every `every` increments (its output kept as
+/// the uninterrupted run's), continues it in place from its last checkpoint
+/// (after increment `after`), and expects the same files. Returns the folder
+/// of the uninterrupted output.
+std::string expect_continued_run_bit_for_bit(const setup::Discretization& disc, const std::string& name,
+                                             int every, int after) {
+  const std::string dir = scratch_dir(name), full = scratch_dir(name + "_full");
+  run::RunOptions options{dir, true};
+  options.checkpoint_every = every;
+  run::run_static(disc, options);
+  fs::copy(dir, full);
+  options.restart = dir;
+  EXPECT_EQ(run::run_static(disc, options).restarted_after, after);
+  expect_same_output(full, dir);
+  return full;
+}
+
 TEST(Restart, DamageHandoverWithAGrowingAlphaContinuesBitForBit) {
   const auto c = testing::handover_plate(8);
   const setup::Discretization disc = setup::build_discretization(c);
@@ -246,14 +263,7 @@ TEST(Restart, DamageHandoverWithAGrowingAlphaContinuesBitForBit) {
   // (kept) and the checkpoint; the continued run rewrites increments 6 to 8
   // in place (the case writes CSVs only: their rows after the checkpoint are
   // cut off first).
-  const std::string dir = scratch_dir("handover"), full = scratch_dir("handover_full");
-  run::RunOptions options{dir, true};
-  options.checkpoint_every = 5;
-  run::run_static(disc, options);
-  fs::copy(dir, full);
-  options.restart = dir;
-  EXPECT_EQ(run::run_static(disc, options).restarted_after, 5);
-  expect_same_output(full, dir);
+  const std::string full = expect_continued_run_bit_for_bit(disc, "handover", 5, 5);
   // The checkpoint is taken on a grown α (a rebuilt discretization); α grows
   // again and bonds fail after it.
   const auto rows = testing::read_rows(full + "/test.csv");
@@ -278,14 +288,7 @@ TEST(Restart, MatrixFreeRunContinuesBitForBit) {
   c.loading.factors = {0.25, 0.5, 0.75, 1.0};
   c.output.vtu = true;
   const setup::Discretization disc = setup::build_discretization(c);
-  const std::string dir = scratch_dir("matrix_free"), full = scratch_dir("matrix_free_full");
-  run::RunOptions options{dir, true};
-  options.checkpoint_every = 3;
-  run::run_static(disc, options);
-  fs::copy(dir, full);
-  options.restart = dir;
-  EXPECT_EQ(run::run_static(disc, options).restarted_after, 3);
-  expect_same_output(full, dir);
+  expect_continued_run_bit_for_bit(disc, "matrix_free", 3, 3);
 }
 
 }  // namespace

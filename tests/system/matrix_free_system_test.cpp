@@ -209,7 +209,9 @@ TEST(MatrixFreeCase, TheCaseFileKeysAreReadAndChecked) {
   const std::string misspelt = message("operator = \"matrixfree\"\n");
   EXPECT_NE(misspelt.find("mf.toml:11"), std::string::npos) << misspelt;
   EXPECT_NE(misspelt.find("did you mean \"matrix-free\""), std::string::npos) << misspelt;
-  const std::string narrow = message("preconditioner_horizon = 0.5\n");
+  const std::string without = message("preconditioner_horizon = 2.0\n");
+  EXPECT_NE(without.find("needs operator = \"matrix-free\""), std::string::npos) << without;
+  const std::string narrow = message("operator = \"matrix-free\"\npreconditioner_horizon = 0.5\n");
   EXPECT_NE(narrow.find("must lie in [1, 10]"), std::string::npos) << narrow;
 }
 

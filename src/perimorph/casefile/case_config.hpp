@@ -4,6 +4,8 @@
 // passed validation when a CaseConfig exists: later stages may rely on it.
 // The format is documented in docs/case-file.md.
 
+#include "perimorph/casefile/run_spec.hpp"
+#include "perimorph/casefile/source_location.hpp"
 #include "perimorph/core/hole.hpp"
 #include "perimorph/core/types.hpp"
 
@@ -13,16 +15,6 @@
 #include <vector>
 
 namespace perimorph::casefile {
-
-/// Where a value came from, for messages raised after parsing (e.g. a set name
-/// that the mesh does not have).
-struct SourceLocation {
-  std::string file;
-  int line = 0;
-  int column = 0;
-  std::string key;               ///< dotted path, e.g. "dirichlet[2].set"
-  std::string describe() const;  ///< "case.toml:12:5: key 'dirichlet[2].set'"
-};
 
 /// [mesh] type = "box". `dim` is the case's dimension for every mesh type.
 struct BoxMesh {
@@ -184,62 +176,6 @@ struct MaterialSpec {
   Mat3 axes = Mat3::Identity();
   DamageSpec damage;  ///< [material.damage]; enabled = false: elastic
   SourceLocation where;
-};
-
-/// [[dirichlet]]: on a node set (or the nodes of a face/cell set), prescribes
-/// u_c = value_c + Σ_j gradient_cj x_j for each constrained component c,
-/// scaled by the load factor.
-struct DirichletSpec {
-  std::string set;
-  std::array<bool, 3> constrained{false, false, false};
-  Vec3 value = Vec3::Zero();
-  Mat3 gradient = Mat3::Zero();
-  SourceLocation where;
-};
-
-/// [[traction]]: a constant traction vector (force per area) on a face set.
-struct TractionSpec {
-  std::string set;
-  Vec3 value = Vec3::Zero();
-  SourceLocation where;
-};
-
-/// [loading]: load factors of the increments. Either `increments` = N with a
-/// linear ramp (factors i/N, i = 1..N), or an explicit list `factors`.
-struct LoadingSpec {
-  std::vector<double> factors{1.0};
-  Vec3 body_force = Vec3::Zero();  ///< force per volume, scaled by the load factor
-};
-
-/// How the stiffness reaches the solver: `assembled` (a sparse matrix), or
-/// `matrix_free` (the non-local operator of a structured grid applied from
-/// one block per grid offset, preconditioned by an assembled short-horizon
-/// operator; system/matrix_free_stiffness.hpp has the cases it covers).
-enum class SolverOperator { assembled, matrix_free };
-
-/// [solver]
-struct SolverSpec {
-  std::string petsc_options;  ///< e.g. "-ksp_type preonly -pc_type cholesky"
-  double rtol = 1e-10;
-  int max_iterations = 10000;
-  SolverOperator op = SolverOperator::assembled;  ///< key `operator`
-  /// Matrix-free: the horizon of the preconditioning operator, in units of the
-  /// largest cell edge (key `preconditioner_horizon`).
-  double preconditioner_horizon = 1.5;
-  SourceLocation where;  ///< the [solver] table (or the file when absent)
-  SourceLocation operator_where;
-};
-
-/// [output]
-struct OutputSpec {
-  std::string directory = "output";  ///< relative to the case file's folder unless absolute
-  std::string basename;              ///< default: case file stem
-  bool vtu = true;
-  int every = 1;              ///< write VTU every n increments (and always the last)
-  bool failed_bonds = false;  ///< fracture runs: BASENAME_failed_bonds.csv, one row per failed bond
-  /// BASENAME.checkpoint every n increments (0: only when the run is stopped
-  /// by SIGINT/SIGTERM between increments); run/checkpoint.hpp.
-  int checkpoint_every = 0;
 };
 
 enum class KernelKind { constant, conical, exponential, gaussian, pmb };

@@ -49,7 +49,6 @@ void read_solver(const Table& root, CaseConfig& c) {
   const auto t = root.table("solver");
   if (!t) return;
   t->check_keys({"petsc_options", "rtol", "max_iterations", "operator", "preconditioner_horizon"});
-  c.solver.where = t->where();
   c.solver.operator_where = t->where();
   if (auto v = t->get("petsc_options")) {
     c.solver.petsc_options = v->string();
@@ -86,6 +85,10 @@ void read_solver(const Table& root, CaseConfig& c) {
     c.solver.operator_where = v->where();
   }
   if (auto v = t->get("preconditioner_horizon")) {
+    if (c.solver.op != SolverOperator::matrix_free)
+      v->fail(
+          "is the horizon of the matrix-free operator's preconditioner: it needs operator = "
+          "\"matrix-free\" in this table (the assembled operator has no such preconditioner)");
     c.solver.preconditioner_horizon = v->number();
     // At least the face neighbours (1 h), below the horizons where the
     // short operator would cost what the full one does.

@@ -95,9 +95,8 @@ void ConstrainedSystem::constrain_rhs(std::span<const double> F) {
     prescribed_[static_cast<std::size_t>(bc_.dofs[k])] = bc_.values[k];
   }
   g.assign(gv);
-  rhs_unit_.assign(F);
   if (free_) {
-    // b = F − K g on the free rows, g on the prescribed ones.
+    // b = F − K g on the free rows, g on the prescribed ones (as eliminate_dirichlet).
     la::Vector Kg(n, model_.dim());
     free_->K.mult(g, Kg);
     std::vector<double> b = Kg.to_std();
@@ -105,6 +104,7 @@ void ConstrainedSystem::constrain_rhs(std::span<const double> F) {
     rhs_unit_.assign(b);
     return;
   }
+  rhs_unit_.assign(F);
   A_.eliminate_dirichlet(bc_.dofs, g, rhs_unit_);
   A_.set_spd();
 }
@@ -284,9 +284,9 @@ la::SolveReport ConstrainedSystem::solve(double lambda, la::Vector& u) {
   rhs_.set_all(0.0);
   rhs_.axpy(lambda, rhs_unit_);
   if (free_) {
-    // A's prescribed rows are the identity, decoupled: started exact there, CG
-    // keeps them exact (a residual relative to ||b|| would let them err by
-    // the stiffness' scale).
+    // A's prescribed rows are the identity: started at their values, the
+    // solution keeps them to round-off (started elsewhere, a residual relative
+    // to ||b|| would let them err by the stiffness' scale).
     std::vector<double> start = u.to_std();
     for (std::size_t k = 0; k < start.size(); ++k)
       if (free_->fixed[k]) start[k] = lambda * prescribed_[k];
