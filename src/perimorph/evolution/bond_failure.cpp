@@ -60,14 +60,30 @@ std::vector<assembly::StretchedBond> BondFailure::select(const RunState& state) 
   return over;
 }
 
-FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, RunState& state,
-                                 system::ConstrainedSystem& system) const {
+void BondFailure::shape_of(const assembly::StretchedBond& b, BondShape& out) const {
+  static constexpr double kOne = 1.0;
   const int dim = disc_->dim();
   const auto& pts = disc_->nonlocal->points;
   const auto& dm = disc_->dofmap;
-  const std::vector<double> ones{1.0};
+  const auto nodes_e = dm.cell_nodes(b.id.e), nodes_f = dm.cell_nodes(b.id.f);
+  out.same_cell = b.id.e == b.id.f;
+  out.nE = static_cast<int>(nodes_e.size());
+  out.nF = static_cast<int>(nodes_f.size());
+  out.Ng = out.nE == 1 ? &kOne : pts.shape.data() + b.id.g * out.nE;
+  out.Nh = out.nF == 1 ? &kOne : pts.shape.data() + b.id.h * out.nF;
+  out.dofs.clear();
+  for (Index node : nodes_e)
+    for (int d = 0; d < dim; ++d) out.dofs.push_back(node * dim + d);
+  if (!out.same_cell)
+    for (Index node : nodes_f)
+      for (int d = 0; d < dim; ++d) out.dofs.push_back(node * dim + d);
+}
+
+FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, RunState& state,
+                                 system::ConstrainedSystem& system) const {
+  const int dim = disc_->dim();
   std::vector<double> block;
-  std::vector<Index> dofs;
+  BondShape bs;
   FailureEnergy energy;
   for (const auto& b : bonds) {
     if (!state.failed.add(b.id)) continue;
@@ -77,22 +93,13 @@ FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bon
     energy.overshoot += b.energy - critical;
     state.cell_dissipated[static_cast<std::size_t>(b.id.e)] += 0.5 * critical;
     state.cell_dissipated[static_cast<std::size_t>(b.id.f)] += 0.5 * critical;
-    const auto nodes_e = dm.cell_nodes(b.id.e), nodes_f = dm.cell_nodes(b.id.f);
-    const bool same = b.id.e == b.id.f;
-    const int nE = static_cast<int>(nodes_e.size()), nF = static_cast<int>(nodes_f.size());
-    const double* Ng = nE == 1 ? ones.data() : pts.shape.data() + b.id.g * nE;
-    const double* Nh = nF == 1 ? ones.data() : pts.shape.data() + b.id.h * nF;
-    dofs.clear();
-    for (Index node : nodes_e)
-      for (int d = 0; d < dim; ++d) dofs.push_back(node * dim + d);
-    if (!same)
-      for (Index node : nodes_f)
-        for (int d = 0; d < dim; ++d) dofs.push_back(node * dim + d);
-    const std::size_t m = dofs.size();
+    shape_of(b, bs);
+    const std::size_t m = bs.dofs.size();
     block.assign(m * m, 0.0);
-    dispatch_dim(
-        dim, [&](auto D) { peridynamics::bond_block<D()>(Ng, nE, Nh, nF, same, b.xi, b.k, block.data()); });
-    system.downdate(dofs, block);
+    dispatch_dim(dim, [&](auto D) {
+      peridynamics::bond_block<D()>(bs.Ng, bs.nE, bs.Nh, bs.nF, bs.same_cell, b.xi, b.k, block.data());
+    });
+    system.downdate(bs.dofs, block);
   }
   system.finish_downdate();
   state.energy.dissipated += energy.dissipated;

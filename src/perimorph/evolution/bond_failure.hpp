@@ -87,6 +87,20 @@ class BondFailure final : public Component {
   FailureEnergy apply(const std::vector<assembly::StretchedBond>& bonds, RunState& state,
                       system::ConstrainedSystem& system) const;
 
+  /// A bond's dofs and the shape values of its two points, in pair_kernel.hpp
+  /// bond_block's layout: the dofs of E's nodes, then F's (E's alone when
+  /// E = F); N_g over E's nodes, N_h over F's (a DG0 cell's one node: 1).
+  /// The pointers are into the discretization's points (or a static 1).
+  struct BondShape {
+    std::vector<Index> dofs;
+    const double* Ng = nullptr;
+    const double* Nh = nullptr;
+    int nE = 0, nF = 0;
+    bool same_cell = false;
+  };
+  /// `b`'s BondShape (its dofs written into `out.dofs`, reusing its storage).
+  void shape_of(const assembly::StretchedBond& b, BondShape& out) const;
+
   /// Damage index and dissipated energy (at s_crit) per cell, for the VTU.
   FractureFields fields(const RunState& state) const;
   /// Crack area from the faces between adjacent cells all of whose bonds
