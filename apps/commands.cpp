@@ -7,6 +7,7 @@
 #include "perimorph/core/interrupt.hpp"
 #include "perimorph/diagnostics/case_report.hpp"
 #include "perimorph/diagnostics/ghost_forces.hpp"
+#include "perimorph/diagnostics/partition_report.hpp"
 #include "perimorph/io/progress.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/run/static_run.hpp"
@@ -80,11 +81,12 @@ std::unique_ptr<perimorph::la::PetscSession> quiet_petsc() {
 
 }  // namespace
 
-int info(const std::string& path) {
+int info(const std::string& path, int partition_parts) {
   const auto config = perimorph::casefile::parse_case_file(path);
   auto petsc = quiet_petsc();
   const auto model = model_with_bonds(config);
   fmt::print("{}", perimorph::diagnostics::info_report(model, path));
+  if (partition_parts > 0) fmt::print("{}", perimorph::diagnostics::partition_report(model, partition_parts));
   return 0;
 }
 

@@ -22,8 +22,9 @@ struct OneProcessOnly : std::runtime_error {
 /// loads, reaction sets, fracture set-up) without assembling or solving.
 int check(const std::string& path);
 
-/// Calibration and discretization figures of a case.
-int info(const std::string& path);
+/// Calibration and discretization figures of a case; with partition_parts > 0
+/// also the partition report (diagnostics/partition_report.hpp).
+int info(const std::string& path, int partition_parts = 0);
 
 /// The residual of u = strain · x on every dof (THEORY §3.2), as CSV and VTU.
 int ghost_forces(const std::string& path, const std::vector<double>& strain, const std::string& out_dir);

@@ -106,6 +106,12 @@ int main(int argc, char** argv) {
                                       "Print the calibrated micromodulus (scale, equivalent lambda = mu, E, "
                                       "nu, G_c factor) and the discretization figures of a case");
   info_cmd->add_option("CASE", case_path, "Case file (TOML)")->required();
+  int partition_parts = 0;
+  info_cmd
+      ->add_option("--partition", partition_parts,
+                   "Also print how P ranks would split the cells (coordinate bisection, PT-Scotch) and the "
+                   "halo each would hold")
+      ->check(CLI::Range(1, 1 << 20));
 
   std::string out_dir;
   bool quiet = false;
@@ -201,7 +207,7 @@ int main(int argc, char** argv) {
   try {
     using namespace perimorph::app;
     if (*check_cmd) return check(case_path);
-    if (*info_cmd) return info(case_path);
+    if (*info_cmd) return info(case_path, partition_parts);
     if (*ghost_cmd) return ghost_forces(case_path, strain, out_dir);
     if (*gc_cmd) return gc(case_path, gc_point, gc_normal, gc_s_crit);
     return run(case_path, out_dir, quiet, args.petsc, start, restart, checkpoint_every);

@@ -164,3 +164,10 @@ file(WRITE ${PM_DG0_LOAD_CASE} "${pm_dg0_text}")
 add_test(NAME cli_run_dg0_traction_and_body_force COMMAND ${PM_EXE} run ${PM_DG0_LOAD_CASE})
 set_tests_properties(cli_run_dg0_traction_and_body_force PROPERTIES
   PASS_REGULAR_EXPRESSION "reaction on 'xmin': \\(-2\\.00000[0-9]e-03, -4\\.00000[0-9]e-03")
+
+# `info --partition` (issue 17, item 1): B1's 1D bar over 2 ranks, both
+# partitioners balanced (the bar's cells split in halves).
+add_test(NAME cli_info_partition COMMAND ${PM_EXE} info ${PROJECT_SOURCE_DIR}/examples/b1_ghost_forces_1d/case.toml
+  --partition 2)
+set_tests_properties(cli_info_partition PROPERTIES
+  PASS_REGULAR_EXPRESSION "partition  2 parts of 320 cells.*coordinate bisection +160 .*PT-Scotch +160 ")
