@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <vector>
 
 namespace perimorph::diagnostics {
 
@@ -33,10 +34,11 @@ std::string partition_report(const setup::Discretization& disc, int parts) {
         h.pairs ? 100.0 * static_cast<double>(h.cut_pairs) / static_cast<double>(h.pairs) : 0.0, t);
   };
   row("coordinate bisection", [&] { return partition::coordinate_bisection(disc.mesh, parts); });
+  // The bisection's row has checked `parts` (1 … cells).
   row("PT-Scotch", [&] {
-    partition::Partition p = partition::coordinate_bisection(disc.mesh, parts);  // checks parts
-    if (parts > 1) p.owner = la::partition_graph(graph.offsets, graph.neighbors, parts, "ptscotch");
-    return p;
+    return partition::Partition{
+        parts, parts > 1 ? la::partition_graph(graph.offsets, graph.neighbors, parts, "ptscotch")
+                         : std::vector<int>(static_cast<std::size_t>(disc.mesh.num_cells()), 0)};
   });
   return out;
 }

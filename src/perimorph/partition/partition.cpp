@@ -49,7 +49,7 @@ void bisect(std::vector<Index>& cells, std::size_t lo, std::size_t hi, int first
 Partition coordinate_bisection(const mesh::Mesh& mesh, int parts) {
   const Index n = mesh.num_cells();
   if (parts < 1 || parts > n)
-    throw Error(fmt::format("cannot partition {} cells into {} parts: give 1 to {} parts", n, parts, n));
+    throw InputError(fmt::format("cannot partition {} cells into {} parts: give 1 to {} parts", n, parts, n));
   std::vector<Vec3> x(static_cast<std::size_t>(n));
   for (Index c = 0; c < n; ++c) x[static_cast<std::size_t>(c)] = mesh.cell_centroid(c);
   std::vector<Index> cells(static_cast<std::size_t>(n));

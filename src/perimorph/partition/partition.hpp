@@ -31,7 +31,7 @@ struct Partition {
 /// into ⌊q/2⌋ and ⌈q/2⌉ parts, the first getting the cells with the smallest
 /// coordinates in proportion (ties broken by cell index, so the result does not
 /// depend on the sort). Part sizes differ by at most one cell per level.
-/// Throws Error if parts < 1 or parts > cells.
+/// Throws InputError if parts < 1 or parts > cells.
 Partition coordinate_bisection(const mesh::Mesh& mesh, int parts);
 
 /// The cells each cell is coupled to: those sharing a node with it (CG dofs,
