@@ -12,7 +12,7 @@ namespace perimorph::diagnostics {
 /// A table, one row per partitioner (coordinate bisection; PT-Scotch through
 /// PETSc), of the largest part, the largest halo, the halo's share of the
 /// cells a rank holds, the most neighbouring parts and the share of cell-graph
-/// pairs cut. Throws Error if parts < 1 or > cells.
+/// pairs cut. Throws InputError if parts < 1 or > cells.
 std::string partition_report(const setup::Discretization& disc, int parts);
 
 }  // namespace perimorph::diagnostics
