@@ -13,9 +13,9 @@ add_test(NAME core_includes_only_core
           -P ${PROJECT_SOURCE_DIR}/cmake/check_includes.cmake)
 # The run's stages point one way: setup → system → evolution → run; diagnostics
 # read a set-up (and its system) but nothing of a run.
-# partition/ (cells over ranks) reads meshes and cell graphs only.
-add_test(NAME partition_includes_only_mesh_and_bonds
-  COMMAND ${PM_CHECK_INCLUDES} -DUNDER=src/perimorph/partition -DALLOWED=core,mesh,bonds,partition
+# partition/ (cells and dofs over ranks) reads meshes, dof maps and cell graphs only.
+add_test(NAME partition_includes_only_mesh_dofs_and_bonds
+  COMMAND ${PM_CHECK_INCLUDES} -DUNDER=src/perimorph/partition -DALLOWED=core,mesh,dofs,bonds,partition
           -P ${PROJECT_SOURCE_DIR}/cmake/check_includes.cmake)
 set(PM_BELOW_SETUP core,casefile,mesh,fem,peridynamics,alpha,dofs,bonds,partition,assembly,io)
 foreach(rule "setup:${PM_BELOW_SETUP},setup"

@@ -1,0 +1,123 @@
+// The dofs over parts (partition/dof_layout.hpp): each part's owned nodes are
+// contiguous in serial order, shared CG nodes go to the lowest part, DG nodes
+// to their cell's part, the ghosts are exactly the other parts' nodes of the
+// cells a part assembles, and the parts' assemblies add up to the serial
+// matrix (every cell and every bond assembled once).
+
+#include "perimorph/partition/dof_layout.hpp"
+
+#include "perimorph/assembly/local_assembly.hpp"
+#include "perimorph/assembly/nonlocal_assembly.hpp"
+#include "perimorph/bonds/cell_graph.hpp"
+#include "perimorph/setup/discretization.hpp"
+#include "support/cases.hpp"
+#include "support/dense_inserter.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <set>
+
+namespace perimorph {
+namespace {
+
+/// A 2D hybrid plate, CG outside the non-local zone and DG inside it.
+setup::Discretization mixed_plate() {
+  auto c = testing::box_case(2, {12, 8, 1}, Vec3(12.0, 8.0, 0.0), 100.0, 0.25);
+  testing::add_nonlocal(c, casefile::KernelKind::constant, 1.2, 0.0, 2,
+                        casefile::Discretization::discontinuous);
+  c.alpha.regions = {testing::alpha_ball(Vec3(6.0, 4.0, 0.0), 3.5, 1.0)};
+  return setup::build_discretization(c);
+}
+
+TEST(DofLayout, OnePartIsTheSerialNumbering) {
+  const auto m = mixed_plate();
+  const auto p = partition::coordinate_bisection(m.mesh, 1);
+  const auto layout = partition::dof_layout(m.dofmap, p, m.nonlocal->graph);
+  for (Index n = 0; n < m.dofmap.num_nodes(); ++n)
+    EXPECT_EQ(layout.to_distributed[static_cast<std::size_t>(n)], n);
+  EXPECT_EQ(layout.owned_nodes(0), m.dofmap.num_nodes());
+  EXPECT_TRUE(layout.ghosts[0].empty());
+}
+
+TEST(DofLayout, OwnersNumberingAndGhostsEqualABruteForceCount) {
+  const auto m = mixed_plate();
+  const auto& graph = m.nonlocal->graph;
+  bool some_dg = false, some_cg = false;
+  for (Index c = 0; c < m.dofmap.num_cells(); ++c)
+    (m.dofmap.continuity(c) == dofs::Continuity::continuous ? some_cg : some_dg) = true;
+  ASSERT_TRUE(some_cg && some_dg) << "the plate must mix CG and DG cells";
+  for (int parts : {2, 3, 4}) {
+    SCOPED_TRACE(parts);
+    const auto p = partition::coordinate_bisection(m.mesh, parts);
+    const auto layout = partition::dof_layout(m.dofmap, p, graph);
+    const auto nodes = static_cast<std::size_t>(m.dofmap.num_nodes());
+    // Owners: the lowest part among the cells of a node.
+    std::vector<int> owner(nodes, parts);
+    for (Index c = 0; c < m.dofmap.num_cells(); ++c)
+      for (Index n : m.dofmap.cell_nodes(c))
+        owner[static_cast<std::size_t>(n)] =
+            std::min(owner[static_cast<std::size_t>(n)], p.owner[static_cast<std::size_t>(c)]);
+    EXPECT_EQ(layout.node_owner, owner);
+    // Numbering: a permutation; part q's nodes in [offset q, offset q+1), serial order kept.
+    std::vector<Index> seen(nodes, -1);
+    for (std::size_t n = 0; n < nodes; ++n) {
+      const Index d = layout.to_distributed[n];
+      ASSERT_GE(d, layout.part_offsets[static_cast<std::size_t>(owner[n])]);
+      ASSERT_LT(d, layout.part_offsets[static_cast<std::size_t>(owner[n]) + 1]);
+      ASSERT_EQ(seen[static_cast<std::size_t>(d)], -1);
+      seen[static_cast<std::size_t>(d)] = static_cast<Index>(n);
+    }
+    for (std::size_t d = 1; d < nodes; ++d) {
+      if (owner[static_cast<std::size_t>(seen[d])] == owner[static_cast<std::size_t>(seen[d - 1])]) {
+        EXPECT_LT(seen[d - 1], seen[d]);
+      }
+    }
+    // Ghosts: nodes of the assembled cells (own cells, F of own pairs E < F) owned elsewhere.
+    std::size_t pairs_assembled = 0;
+    for (int q = 0; q < parts; ++q) {
+      std::set<Index> ghosts;
+      auto visit = [&](Index c) {
+        for (Index n : m.dofmap.cell_nodes(c))
+          if (owner[static_cast<std::size_t>(n)] != q) ghosts.insert(n);
+      };
+      for (Index e = 0; e < m.dofmap.num_cells(); ++e)
+        for (Index f : graph.row(e))
+          if (f >= e && partition::pair_assembler(p, e, f) == q) {
+            ++pairs_assembled;
+            visit(e);
+            visit(f);
+          }
+      EXPECT_EQ(layout.ghosts[static_cast<std::size_t>(q)], std::vector<Index>(ghosts.begin(), ghosts.end()))
+          << q;
+      EXPECT_FALSE(ghosts.empty()) << q;
+    }
+    EXPECT_EQ(pairs_assembled, graph.num_pairs());
+    EXPECT_GT(layout.ghost_ratio(), 0.0);
+  }
+}
+
+TEST(DofLayout, PartsAssembleTheSerialMatrixEachCellAndBondOnce) {
+  const auto m = mixed_plate();
+  const auto n = m.dofmap.num_dofs();
+  testing::DenseInserter serial(n);
+  assembly::assemble_elasticity(m.local_space(), m.stiffness, serial);
+  assembly::assemble_nonlocal(m.nonlocal_space(), serial);
+  const auto p = partition::coordinate_bisection(m.mesh, 3);
+  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(n, n);
+  for (int q = 0; q < 3; ++q) {
+    testing::DenseInserter part(n);
+    assembly::assemble_elasticity(m.local_space(), m.stiffness, part,
+                                  [&](Index c) { return p.owner[static_cast<std::size_t>(c)] == q; });
+    assembly::NonlocalOptions only_own;
+    only_own.include_pair = [&](Index e, Index f) { return partition::pair_assembler(p, e, f) == q; };
+    assembly::assemble_nonlocal(m.nonlocal_space(), part, only_own);
+    EXPECT_GT(part.A.cwiseAbs().maxCoeff(), 0.0) << q;
+    sum += part.A;
+  }
+  const double scale = serial.A.cwiseAbs().maxCoeff();
+  EXPECT_LT((sum - serial.A).cwiseAbs().maxCoeff(), 1e-13 * scale);
+}
+
+}  // namespace
+}  // namespace perimorph
