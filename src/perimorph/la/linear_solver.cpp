@@ -68,18 +68,27 @@ void LinearSolver::solve_direct(const Vector& b, Vector& x, SolveReport& report)
 namespace {
 
 /// Rigid-body modes from the dof-node coordinates (block size = dim), as the
-/// near-null space of M (GAMG's coarse spaces).
-void attach_rigid_body_modes(PetscMatHandle M, std::span<const Vec3> node_coordinates, int dim) {
+/// near-null space of M (GAMG's coarse spaces); distributed (`d` not null),
+/// those of the nodes this process owns, in the distributed order.
+void attach_rigid_body_modes(PetscMatHandle M, std::span<const Vec3> node_coordinates, int dim,
+                             const Distribution* d) {
+  const auto owned = d != nullptr ? static_cast<std::size_t>(d->owned_nodes()) : node_coordinates.size();
   Vec coords = nullptr;
   PM_PETSC(VecCreate(PETSC_COMM_WORLD, &coords));
-  PM_PETSC(VecSetSizes(coords, static_cast<PetscInt>(node_coordinates.size()) * dim, PETSC_DECIDE));
+  PM_PETSC(VecSetSizes(coords, static_cast<PetscInt>(owned) * dim, PETSC_DECIDE));
   PM_PETSC(VecSetBlockSize(coords, dim));
   PM_PETSC(VecSetType(coords, VECSTANDARD));
   PetscScalar* c = nullptr;
   PM_PETSC(VecGetArray(coords, &c));
-  for (std::size_t n = 0; n < node_coordinates.size(); ++n)
-    for (int d = 0; d < dim; ++d)
-      c[n * static_cast<std::size_t>(dim) + static_cast<std::size_t>(d)] = node_coordinates[n][d];
+  for (std::size_t n = 0; n < node_coordinates.size(); ++n) {
+    std::size_t at = n;
+    if (d != nullptr) {
+      if (!d->owns(static_cast<Index>(n))) continue;
+      at = static_cast<std::size_t>(d->to_distributed[n] - d->begin);
+    }
+    for (int k = 0; k < dim; ++k)
+      c[at * static_cast<std::size_t>(dim) + static_cast<std::size_t>(k)] = node_coordinates[n][k];
+  }
   PM_PETSC(VecRestoreArray(coords, &c));
   MatNullSpace nullsp = nullptr;
   PM_PETSC(MatNullSpaceCreateRigidBody(coords, &nullsp));
@@ -94,7 +103,7 @@ void LinearSolver::set_operator(Matrix& A, std::span<const Vec3> node_coordinate
   mult_ = [&A](const Vector& x, Vector& y) { A.mult(x, y); };
   op_ = A.handle();
   if (direct_) PM_PETSC(KSPSetOperators(direct_, op_, op_));
-  attach_rigid_body_modes(A.handle(), node_coordinates, dim);
+  attach_rigid_body_modes(A.handle(), node_coordinates, dim, A.distribution());
   PM_PETSC(KSPSetOperators(ksp_, A.handle(), A.handle()));
 }
 
@@ -102,7 +111,7 @@ void LinearSolver::set_operators(const ShellMatrix& A, Matrix& P, std::span<cons
                                  int dim) {
   mult_ = [&A](const Vector& x, Vector& y) { A.mult(x, y); };
   op_ = nullptr;  // no entries: no direct fallback
-  attach_rigid_body_modes(P.handle(), node_coordinates, dim);
+  attach_rigid_body_modes(P.handle(), node_coordinates, dim, P.distribution());
   PM_PETSC(KSPSetOperators(ksp_, A.handle(), P.handle()));
 }
 

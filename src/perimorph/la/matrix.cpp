@@ -103,6 +103,48 @@ Matrix::Matrix(const assembly::SparsityPattern& pattern) {
   direct_ = is_seqaij(m_);
 }
 
+Matrix::Matrix(const assembly::SparsityPattern& pattern, std::shared_ptr<const Distribution> distribution)
+    : distribution_(std::move(distribution)) {
+  const Distribution& d = *distribution_;
+  const Index bs = pattern.block_size;
+  const Index nb = pattern.num_block_rows();
+  if (d.num_nodes() != nb)
+    throw Error(fmt::format("matrix: the distribution has {} dof nodes, the pattern {} block rows",
+                            d.num_nodes(), nb));
+  PM_PETSC(MatCreate(PETSC_COMM_WORLD, &m_));
+  PM_PETSC(MatSetSizes(m_, d.owned_nodes() * bs, d.owned_nodes() * bs, PETSC_DETERMINE, PETSC_DETERMINE));
+  PM_PETSC(MatSetType(m_, MATAIJ));
+  PM_PETSC(MatSetBlockSize(m_, bs));
+  // Block-row counts of the owned rows: columns owned here (diagonal block) or elsewhere.
+  std::vector<PetscInt> dnnz(static_cast<std::size_t>(d.owned_nodes()), 0), onnz(dnnz.size(), 0);
+  std::vector<Index> owned_rows;
+  for (Index r = 0; r < nb; ++r) {
+    if (!d.owns(r)) continue;
+    owned_rows.push_back(r);
+    const auto k = static_cast<std::size_t>(d.to_distributed[static_cast<std::size_t>(r)] - d.begin);
+    for (Index c : pattern.row(r)) ++(d.owns(c) ? dnnz : onnz)[k];
+  }
+  PM_PETSC(MatXAIJSetPreallocation(m_, bs, dnnz.data(), onnz.data(), nullptr, nullptr));
+  ISLocalToGlobalMapping map = nullptr;
+  PM_PETSC(ISLocalToGlobalMappingCreate(PETSC_COMM_SELF, static_cast<PetscInt>(bs), static_cast<PetscInt>(nb),
+                                        d.to_distributed.data(), PETSC_COPY_VALUES, &map));
+  PM_PETSC(MatSetLocalToGlobalMapping(m_, map, map));
+  PM_PETSC(ISLocalToGlobalMappingDestroy(&map));
+  // The whole pattern of the owned rows is stored (explicit zeros), as above.
+  std::vector<PetscScalar> zeros;
+  for (Index r : owned_rows) {
+    const auto cols = pattern.row(r);
+    zeros.assign(cols.size() * static_cast<std::size_t>(bs * bs), 0.0);
+    const PetscInt row = r;
+    PM_PETSC(MatSetValuesBlockedLocal(m_, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(),
+                                      zeros.data(), INSERT_VALUES));
+  }
+  PM_PETSC(MatSetOption(m_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PM_PETSC(MatSetOption(m_, MAT_IGNORE_ZERO_ENTRIES, PETSC_FALSE));
+  finalize();
+  direct_ = false;
+}
+
 Matrix::~Matrix() {
   if (!m_) return;
   try {
@@ -113,7 +155,11 @@ Matrix::~Matrix() {
 }
 
 Matrix::Matrix(Matrix&& other) noexcept
-    : m_(other.m_), direct_(other.direct_), view_(other.view_), view_held_(other.view_held_) {
+    : m_(other.m_),
+      distribution_(std::move(other.distribution_)),
+      direct_(other.direct_),
+      view_(other.view_),
+      view_held_(other.view_held_) {
   other.m_ = nullptr;
   other.view_held_ = false;
 }
@@ -128,6 +174,7 @@ Matrix& Matrix::operator=(Matrix&& other) noexcept {
       MatDestroy(&m_);
     }
     m_ = other.m_;
+    distribution_ = std::move(other.distribution_);
     direct_ = other.direct_;
     view_ = other.view_;
     view_held_ = other.view_held_;
@@ -138,6 +185,11 @@ Matrix& Matrix::operator=(Matrix&& other) noexcept {
 }
 
 void Matrix::add(std::span<const Index> rows, std::span<const Index> cols, std::span<const double> values) {
+  if (distribution_) {
+    PM_PETSC(MatSetValuesLocal(m_, static_cast<PetscInt>(rows.size()), rows.data(),
+                               static_cast<PetscInt>(cols.size()), cols.data(), values.data(), ADD_VALUES));
+    return;
+  }
   if (!acquire_view()) {
     PM_PETSC(MatSetValues(m_, static_cast<PetscInt>(rows.size()), rows.data(),
                           static_cast<PetscInt>(cols.size()), cols.data(), values.data(), ADD_VALUES));
@@ -185,7 +237,9 @@ Matrix Matrix::duplicate() const {
   release_view();
   Mat copy = nullptr;
   PM_PETSC(MatDuplicate(m_, MAT_COPY_VALUES, &copy));
-  return Matrix(copy);
+  Matrix out(copy);
+  out.distribution_ = distribution_;
+  return out;
 }
 
 void Matrix::mult(const Vector& x, Vector& y) const {
@@ -195,6 +249,17 @@ void Matrix::mult(const Vector& x, Vector& y) const {
 
 void Matrix::eliminate_dirichlet(std::span<const Index> rows, const Vector& x, Vector& rhs, double diagonal) {
   release_view();
+  if (distribution_) {
+    // Each process names the rows it owns (assembly numbering, mapped).
+    PetscInt bs = 1;
+    PM_PETSC(MatGetBlockSize(m_, &bs));
+    std::vector<PetscInt> owned;
+    for (Index r : rows)
+      if (distribution_->owns(r / bs)) owned.push_back(r);
+    PM_PETSC(MatZeroRowsColumnsLocal(m_, static_cast<PetscInt>(owned.size()), owned.data(), diagonal,
+                                     x.read_handle(), rhs.handle()));
+    return;
+  }
   PM_PETSC(MatZeroRowsColumns(m_, static_cast<PetscInt>(rows.size()), rows.data(), diagonal, x.read_handle(),
                               rhs.handle()));
 }
@@ -323,8 +388,8 @@ assembly::SparsityPattern Matrix::block_pattern() const {
 void Matrix::set_values(std::span<const double> values) {
   release_view();
   if (static_cast<double>(values.size()) != nonzeros())
-    throw Error(fmt::format("set_values: {} values for a matrix with {} stored entries", values.size(),
-                            nonzeros()));
+    throw Error(
+        fmt::format("set_values: {} values for a matrix with {} stored entries", values.size(), nonzeros()));
   if (!is_seqaij(m_)) throw Error("set_values: only on one process (MATSEQAIJ)");
   PetscScalar* v = nullptr;
   PM_PETSC(MatSeqAIJGetArray(m_, &v));
@@ -334,6 +399,32 @@ void Matrix::set_values(std::span<const double> values) {
 
 Eigen::MatrixXd Matrix::to_dense() const {
   release_view();
+  if (distribution_) {
+    // The owned rows, by assembly numbering, summed over the processes.
+    const Distribution& d = *distribution_;
+    PetscInt bs = 1;
+    PM_PETSC(MatGetBlockSize(m_, &bs));
+    const Index n = d.num_nodes() * bs;
+    std::vector<Index> to_assembly(static_cast<std::size_t>(n));
+    for (Index node = 0; node < d.num_nodes(); ++node)
+      for (Index k = 0; k < bs; ++k)
+        to_assembly[static_cast<std::size_t>(d.to_distributed[static_cast<std::size_t>(node)] * bs + k)] =
+            node * bs + k;
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+    PetscInt first = 0, last = 0;
+    PM_PETSC(MatGetOwnershipRange(m_, &first, &last));
+    for (PetscInt r = first; r < last; ++r) {
+      PetscInt ncols = 0;
+      const PetscInt* cols = nullptr;
+      const PetscScalar* vals = nullptr;
+      PM_PETSC(MatGetRow(m_, r, &ncols, &cols, &vals));
+      for (PetscInt k = 0; k < ncols; ++k)
+        A(to_assembly[static_cast<std::size_t>(r)], to_assembly[static_cast<std::size_t>(cols[k])]) = vals[k];
+      PM_PETSC(MatRestoreRow(m_, r, &ncols, &cols, &vals));
+    }
+    MPI_Allreduce(MPI_IN_PLACE, A.data(), static_cast<int>(A.size()), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+    return A;
+  }
   const Index n = rows();
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
   for (PetscInt r = 0; r < n; ++r) {

@@ -9,15 +9,23 @@
 // path; the values are summed in the same order, so the matrix is bit-identical
 // to MatSetValues(ADD_VALUES). Any other operation releases the arrays first;
 // elsewhere add() is MatSetValues.
+//
+// Distributed (issue 17): made with a la::Distribution, the matrix is spread
+// over the processes of PETSC_COMM_WORLD by it, and add(), eliminate_dirichlet
+// and to_dense take and give the assembly's numbering (a local-to-global
+// mapping); a process may add to rows another owns (PETSc sends them at
+// finalize). The other operations that take row numbers are for one process.
 
 #include "perimorph/assembly/inserter.hpp"
 #include "perimorph/assembly/sparsity.hpp"
+#include "perimorph/la/distribution.hpp"
 #include "perimorph/la/petsc_fwd.hpp"
 #include "perimorph/la/vector.hpp"
 
 #include <Eigen/Core>
 
 #include <functional>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -26,6 +34,10 @@ namespace perimorph::la {
 class Matrix final : public assembly::MatrixInserter {
  public:
   explicit Matrix(const assembly::SparsityPattern& pattern);
+  /// The same spread over the processes by `distribution` (of the pattern's
+  /// block rows; the same on every process): each process stores the rows it
+  /// owns, preallocated exactly from the pattern.
+  Matrix(const assembly::SparsityPattern& pattern, std::shared_ptr<const Distribution> distribution);
   ~Matrix() override;
   Matrix(Matrix&& other) noexcept;
   Matrix& operator=(Matrix&& other) noexcept;
@@ -77,8 +89,11 @@ class Matrix final : public assembly::MatrixInserter {
   /// Overwrites the stored values (in row order, as visit_rows gives them) of a
   /// finalized matrix; throws Error if their number differs.
   void set_values(std::span<const double> values);
-  /// Dense copy, for tests on tiny matrices.
+  /// Dense copy, for tests on tiny matrices; distributed, the whole matrix in
+  /// the assembly's numbering on every process (collective).
   Eigen::MatrixXd to_dense() const;
+  /// The distribution (null on one process without one).
+  const Distribution* distribution() const { return distribution_.get(); }
   /// Marks the matrix symmetric positive definite (after finalize).
   void set_spd();
 
@@ -109,6 +124,7 @@ class Matrix final : public assembly::MatrixInserter {
   void release_view() const;
 
   PetscMatHandle m_ = nullptr;
+  std::shared_ptr<const Distribution> distribution_;
   bool direct_ = false;  ///< MATSEQAIJ with a fixed structure: add() may write the arrays
   mutable CsrView view_;
   mutable bool view_held_ = false;

@@ -17,11 +17,20 @@ Vector::Vector(Index size, int block_size) {
   PM_PETSC(VecSet(v_, 0.0));
 }
 
+Vector::Vector(std::shared_ptr<const Distribution> distribution, int block_size)
+    : distribution_(std::move(distribution)) {
+  PM_PETSC(VecCreate(PETSC_COMM_WORLD, &v_));
+  PM_PETSC(VecSetSizes(v_, distribution_->owned_nodes() * block_size, PETSC_DETERMINE));
+  PM_PETSC(VecSetBlockSize(v_, block_size));
+  PM_PETSC(VecSetType(v_, VECSTANDARD));
+  PM_PETSC(VecSet(v_, 0.0));
+}
+
 Vector::~Vector() {
   if (v_) VecDestroy(&v_);
 }
 
-Vector::Vector(Vector&& other) noexcept : v_(other.v_) {
+Vector::Vector(Vector&& other) noexcept : v_(other.v_), distribution_(std::move(other.distribution_)) {
   other.v_ = nullptr;
 }
 
@@ -29,6 +38,7 @@ Vector& Vector::operator=(Vector&& other) noexcept {
   if (this != &other) {
     if (v_) VecDestroy(&v_);
     v_ = other.v_;
+    distribution_ = std::move(other.distribution_);
     other.v_ = nullptr;
   }
   return *this;
@@ -83,6 +93,47 @@ std::vector<double> Vector::to_std() const {
   return out;
 }
 
+void Vector::assign_replicated(std::span<const double> values) {
+  if (!distribution_) {
+    assign(values);
+    return;
+  }
+  const Distribution& d = *distribution_;
+  PetscInt bs = 1;
+  PM_PETSC(VecGetBlockSize(v_, &bs));
+  PERIMORPH_ASSERT(static_cast<Index>(values.size()) == d.num_nodes() * bs, "vector size mismatch");
+  PetscScalar* a = nullptr;
+  PM_PETSC(VecGetArray(v_, &a));
+  for (Index n = 0; n < d.num_nodes(); ++n) {
+    if (!d.owns(n)) continue;
+    const Index at = (d.to_distributed[static_cast<std::size_t>(n)] - d.begin) * bs;
+    for (Index k = 0; k < bs; ++k) a[at + k] = values[static_cast<std::size_t>(n * bs + k)];
+  }
+  PM_PETSC(VecRestoreArray(v_, &a));
+}
+
+std::vector<double> Vector::to_replicated() const {
+  if (!distribution_) return to_std();
+  const Distribution& d = *distribution_;
+  PetscInt bs = 1;
+  PM_PETSC(VecGetBlockSize(v_, &bs));
+  VecScatter to_all = nullptr;
+  Vec all = nullptr;
+  PM_PETSC(VecScatterCreateToAll(v_, &to_all, &all));
+  PM_PETSC(VecScatterBegin(to_all, v_, all, INSERT_VALUES, SCATTER_FORWARD));
+  PM_PETSC(VecScatterEnd(to_all, v_, all, INSERT_VALUES, SCATTER_FORWARD));
+  const PetscScalar* a = nullptr;
+  PM_PETSC(VecGetArrayRead(all, &a));
+  std::vector<double> out(static_cast<std::size_t>(d.num_nodes() * bs));
+  for (Index n = 0; n < d.num_nodes(); ++n)
+    for (Index k = 0; k < bs; ++k)
+      out[static_cast<std::size_t>(n * bs + k)] = a[d.to_distributed[static_cast<std::size_t>(n)] * bs + k];
+  PM_PETSC(VecRestoreArrayRead(all, &a));
+  PM_PETSC(VecScatterDestroy(&to_all));
+  PM_PETSC(VecDestroy(&all));
+  return out;
+}
+
 double Vector::norm2() const {
   PetscReal n = 0;
   PM_PETSC(VecNorm(v_, NORM_2, &n));
@@ -106,9 +157,10 @@ void Vector::copy_from(const Vector& other) {
 bool Vector::all_finite() const {
   const PetscScalar* a = nullptr;
   PM_PETSC(VecGetArrayRead(v_, &a));
-  const bool ok = std::all_of(a, a + size(), [](double x) { return std::isfinite(x); });
+  int ok = std::all_of(a, a + size(), [](double x) { return std::isfinite(x); }) ? 1 : 0;
   PM_PETSC(VecRestoreArrayRead(v_, &a));
-  return ok;
+  if (distribution_) MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
+  return ok == 1;
 }
 
 }  // namespace perimorph::la

@@ -1,10 +1,16 @@
 #pragma once
-// A PETSc vector (RAII, move-only). Serial for now: the local layout equals
-// the global one; all access goes through owned ranges so MPI can follow.
+// A PETSc vector (RAII, move-only). Made with a size, it is serial: the local
+// layout equals the global one. Made with a la::Distribution (issue 17), each
+// process stores the entries of the dof nodes it owns, in the distributed
+// numbering; assign_replicated and to_replicated convert from and to the
+// assembly's numbering. The element-wise operations (assign, add, add_at,
+// set_at, to_std) act on the owned entries; norm2, dot and all_finite on all.
 
 #include "perimorph/core/types.hpp"
+#include "perimorph/la/distribution.hpp"
 #include "perimorph/la/petsc_fwd.hpp"
 
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -13,6 +19,9 @@ namespace perimorph::la {
 class Vector {
  public:
   Vector(Index size, int block_size);
+  /// Spread over the processes by `distribution` (dof nodes of `block_size`
+  /// entries), zero.
+  Vector(std::shared_ptr<const Distribution> distribution, int block_size);
   ~Vector();
   Vector(Vector&& other) noexcept;
   Vector& operator=(Vector&& other) noexcept;
@@ -30,6 +39,14 @@ class Vector {
   /// this[indices[k]] = value.
   void set_at(std::span<const Index> indices, double value);
   std::vector<double> to_std() const;
+  /// Sets the owned entries from `values`, the whole vector in the assembly's
+  /// numbering (the same on every process). Without a distribution: assign.
+  void assign_replicated(std::span<const double> values);
+  /// The whole vector in the assembly's numbering on every process
+  /// (collective). Without a distribution: to_std.
+  std::vector<double> to_replicated() const;
+  /// The distribution (null for a serial vector).
+  const Distribution* distribution() const { return distribution_.get(); }
   double norm2() const;
   double dot(const Vector& other) const;
   /// this ← this + a·x
@@ -46,6 +63,7 @@ class Vector {
 
  private:
   PetscVecHandle v_ = nullptr;
+  std::shared_ptr<const Distribution> distribution_;
 };
 
 }  // namespace perimorph::la

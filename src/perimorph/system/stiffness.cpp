@@ -1,33 +1,77 @@
 #include "perimorph/system/stiffness.hpp"
 
 #include "perimorph/assembly/sparsity.hpp"
+#include "perimorph/la/petsc_session.hpp"
+#include "perimorph/partition/dof_layout.hpp"
 
 #include <chrono>
 
 namespace perimorph::system {
 
-AssembledStiffness assemble_stiffness(const setup::Discretization& model, const bonds::BrokenBonds* broken,
-                                      std::span<const double> damage) {
-  using clock = std::chrono::steady_clock;
-  auto seconds = [](clock::time_point a) { return std::chrono::duration<double>(clock::now() - a).count(); };
+namespace {
+
+using clock = std::chrono::steady_clock;
+double seconds_since(clock::time_point a) {
+  return std::chrono::duration<double>(clock::now() - a).count();
+}
+
+/// Adds the cells for which `own_cell` holds and the pairs for which
+/// `own_pair` holds (all if empty) into out.K, and finalizes it.
+void assemble_into(AssembledStiffness& out, const setup::Discretization& model,
+                   const bonds::BrokenBonds* broken, std::span<const double> damage,
+                   const std::function<bool(Index)>& own_cell,
+                   const std::function<bool(Index, Index)>& own_pair) {
   auto t0 = clock::now();
-  const bonds::CellGraph* graph = model.nonlocal ? &model.nonlocal->graph : nullptr;
-  AssembledStiffness out{la::Matrix(assembly::build_sparsity(model.dofmap, graph)), {}, 0.0, 0.0, 0.0};
-  out.setup_seconds = seconds(t0);
-  t0 = clock::now();
   const bool damaged = model.damage && !damage.empty();
   const fem::ConstitutiveField C = damaged ? setup::damaged_stiffness(model.stiffness, *model.damage, damage)
                                            : fem::ConstitutiveField(0, 0, 0);
-  assembly::assemble_elasticity(model.local_space(), damaged ? C : model.stiffness, out.K,
-                                [&](Index c) { return model.has_local_stiffness(c); });
-  out.local_seconds = seconds(t0);
+  assembly::assemble_elasticity(model.local_space(), damaged ? C : model.stiffness, out.K, [&](Index c) {
+    return model.has_local_stiffness(c) && (!own_cell || own_cell(c));
+  });
+  out.local_seconds = seconds_since(t0);
   if (model.nonlocal) {
     t0 = clock::now();
     const assembly::NonlocalSpace space = model.nonlocal_space(broken);
-    out.nonlocal = assembly::assemble_nonlocal(space, out.K);
-    out.nonlocal_seconds = seconds(t0);
+    assembly::NonlocalOptions options;
+    options.include_pair = own_pair;
+    out.nonlocal = assembly::assemble_nonlocal(space, out.K, options);
+    out.nonlocal_seconds = seconds_since(t0);
   }
   out.K.finalize();
+}
+
+}  // namespace
+
+AssembledStiffness assemble_stiffness(const setup::Discretization& model, const bonds::BrokenBonds* broken,
+                                      std::span<const double> damage) {
+  const auto t0 = clock::now();
+  const bonds::CellGraph* graph = model.nonlocal ? &model.nonlocal->graph : nullptr;
+  AssembledStiffness out{la::Matrix(assembly::build_sparsity(model.dofmap, graph)), {}, 0.0, 0.0, 0.0};
+  out.setup_seconds = seconds_since(t0);
+  assemble_into(out, model, broken, damage, {}, {});
+  return out;
+}
+
+std::shared_ptr<const la::Distribution> distribution_of(const partition::DofLayout& layout, int part) {
+  auto d = std::make_shared<la::Distribution>();
+  d->to_distributed = layout.to_distributed;
+  d->begin = layout.part_offsets[static_cast<std::size_t>(part)];
+  d->end = layout.part_offsets[static_cast<std::size_t>(part) + 1];
+  return d;
+}
+
+AssembledStiffness assemble_stiffness(const setup::Discretization& model, const partition::Partition& p,
+                                      const std::shared_ptr<const la::Distribution>& distribution,
+                                      const bonds::BrokenBonds* broken, std::span<const double> damage) {
+  const auto t0 = clock::now();
+  const int part = la::world_rank();
+  const bonds::CellGraph* graph = model.nonlocal ? &model.nonlocal->graph : nullptr;
+  AssembledStiffness out{
+      la::Matrix(assembly::build_sparsity(model.dofmap, graph), distribution), {}, 0.0, 0.0, 0.0};
+  out.setup_seconds = seconds_since(t0);
+  assemble_into(
+      out, model, broken, damage, [&](Index c) { return p.owner[static_cast<std::size_t>(c)] == part; },
+      [&](Index e, Index f) { return partition::pair_assembler(p, e, f) == part; });
   return out;
 }
 

@@ -3,10 +3,17 @@
 // assembled into a PETSc matrix with exact preallocation.
 
 #include "perimorph/assembly/nonlocal_assembly.hpp"
+#include "perimorph/la/distribution.hpp"
 #include "perimorph/la/matrix.hpp"
 #include "perimorph/setup/discretization.hpp"
 
+#include <memory>
 #include <span>
+
+namespace perimorph::partition {
+struct Partition;
+struct DofLayout;
+}  // namespace perimorph::partition
 
 namespace perimorph::system {
 
@@ -20,6 +27,20 @@ struct AssembledStiffness {
 /// with `damage` (d at every local quadrature point, THEORY §6; empty: d = 0)
 /// the local stiffness is the damaged one (setup::damaged_stiffness).
 AssembledStiffness assemble_stiffness(const setup::Discretization& model,
+                                      const bonds::BrokenBonds* broken = nullptr,
+                                      std::span<const double> damage = {});
+
+/// The distribution of part `part` of `layout` (this process's, for part =
+/// its rank) for la::Matrix and la::Vector.
+std::shared_ptr<const la::Distribution> distribution_of(const partition::DofLayout& layout, int part);
+
+/// The same spread over the processes of PETSC_COMM_WORLD (issue 17; part =
+/// rank): this process assembles the local blocks of the cells `p` gives it and
+/// the bonds of the cell pairs partition::pair_assembler gives it, into K
+/// distributed by `distribution` (distribution_of); over all processes every
+/// cell and every bond is assembled once. Collective.
+AssembledStiffness assemble_stiffness(const setup::Discretization& model, const partition::Partition& p,
+                                      const std::shared_ptr<const la::Distribution>& distribution,
                                       const bonds::BrokenBonds* broken = nullptr,
                                       std::span<const double> damage = {});
 
