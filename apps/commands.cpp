@@ -62,14 +62,49 @@ void require_one_process() {
   // have mpirun kill rank 0 before the message is out.
   if (perimorph::la::world_rank() == 0) {
     fmt::print(stderr,
-               "error: perimorph runs on one MPI process; this one was started on {} (mpirun -n {}). "
-               "Distributed runs are not implemented yet: start it without mpirun, and set OMP_NUM_THREADS "
+               "error: this command runs on one MPI process; it was started on {} (mpirun -n {}). "
+               "Only `perimorph run` of an elastic case is distributed: start this one without mpirun, and "
+               "set OMP_NUM_THREADS "
                "for the threads of its assembly and bond loops\n",
                size, size);
     std::fflush(stderr);
   }
   perimorph::la::barrier();
   throw OneProcessOnly("more than one MPI process");
+}
+
+/// Stops a run started on more than one MPI process whose case uses a stage
+/// that is not distributed yet (issue 17), with one message; an elastic run
+/// (local, non-local or hybrid, assembled) goes on, distributed.
+void require_distributable(const perimorph::casefile::CaseConfig& config, const std::string& restart,
+                           int checkpoint_every) {
+  const int size = perimorph::la::world_size();
+  if (size == 1) return;
+  std::vector<std::string> missing;
+  if (config.fracture.enabled) missing.emplace_back("[fracture]");
+  for (const auto& m : config.materials)
+    if (m.damage.enabled) {
+      missing.emplace_back("[material.damage]");
+      break;
+    }
+  if (config.adaptivity.enabled) missing.emplace_back("[adaptivity]");
+  if (config.solver.op == perimorph::casefile::SolverOperator::matrix_free)
+    missing.emplace_back("[solver] operator = \"matrix-free\"");
+  if (!restart.empty()) missing.emplace_back("--restart");
+  if (checkpoint_every > 0 || (checkpoint_every < 0 && config.output.checkpoint_every > 0))
+    missing.emplace_back("checkpoints ([output] checkpoint_every, --checkpoint-every)");
+  if (missing.empty()) return;
+  if (perimorph::la::world_rank() == 0) {
+    fmt::print(
+        stderr,
+        "error: {}: this run was started on {} MPI processes (mpirun -n {}), but {} {} not distributed "
+        "yet; only elastic runs (local, non-local or hybrid, with an assembled stiffness) are. Start "
+        "it without mpirun, and set OMP_NUM_THREADS for the threads of its assembly and bond loops\n",
+        config.path, size, size, fmt::join(missing, ", "), missing.size() == 1 ? "is" : "are");
+    std::fflush(stderr);
+  }
+  perimorph::la::barrier();
+  throw OneProcessOnly("a stage that is not distributed");
 }
 
 /// A PETSc session with no options of its own (commands that assemble but do not solve).
@@ -158,7 +193,11 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
   int argc = static_cast<int>(args.size());
   char** argv_ptr = argv.data();
   perimorph::la::PetscSession petsc(argc, argv_ptr);
-  require_one_process();
+  require_distributable(config, restart, checkpoint_every);
+  if (perimorph::la::world_rank() != 0) {  // process 0 reports; the others compute the same figures
+    progress.mute();
+    quiet = true;
+  }
   // After PETSc's initialization (which installs its own handlers): SIGINT and
   // SIGTERM stop the run between solves, its files in step.
   perimorph::install_stop_handlers();

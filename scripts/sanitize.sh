@@ -69,7 +69,7 @@ run_asan() {
   configure "$dir" address,undefined
   # The fuzz targets' replay: the case-file one only (the mesh one replays 600 inputs
   # through the mesh builder, 20 s under ASan; both ran under ASan in docs/fuzzing.md).
-  cmake --build "$dir" --parallel "$jobs" --target perimorph_tests perimorph_cli \
+  cmake --build "$dir" --parallel "$jobs" --target perimorph_tests perimorph_mpi_tests perimorph_cli \
     perimorph_fuzz_replay_casefile
   echo "sanitize: asan: built in $((SECONDS - start)) s"
   export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1:log_path=$reports/asan"

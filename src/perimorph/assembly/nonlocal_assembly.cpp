@@ -166,12 +166,17 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
     return use_cache && unit_pair(e, f) && !near(e, f) && broken_in(e, f).empty();
   };
   if (use_cache) {
+    std::map<OffsetKey, std::pair<Index, Index>> first_of_all;  // cache_from_all_pairs
     for (Index e = 0; e < ncells; ++e)
-      for (Index f : s.graph.row(e))
-        if (f >= e && included(e, f) && cacheable(e, f)) {
-          auto [it, added] = cache_index.emplace(key_of(e, f), static_cast<long>(representatives.size()));
-          if (added) representatives.emplace_back(e, f);
-        }
+      for (Index f : s.graph.row(e)) {
+        if (f < e || !cacheable(e, f)) continue;
+        if (options.cache_from_all_pairs) first_of_all.emplace(key_of(e, f), std::pair{e, f});
+        if (!included(e, f)) continue;
+        auto [it, added] = cache_index.emplace(key_of(e, f), static_cast<long>(representatives.size()));
+        if (added) representatives.emplace_back(e, f);
+      }
+    if (options.cache_from_all_pairs)
+      for (auto& r : representatives) r = first_of_all.at(key_of(r.first, r.second));
   }
   std::vector<double> cache_blocks(representatives.size() * max_block);
   std::vector<std::size_t> cache_bonds(representatives.size());

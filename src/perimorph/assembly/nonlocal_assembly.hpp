@@ -83,6 +83,12 @@ struct NonlocalOptions {
   /// the contribution of some cells, for an update in place
   /// (system::ConstrainedSystem::reassemble).
   std::function<bool(Index e, Index f)> include_pair;
+  /// With include_pair and the translation cache: each cached block is
+  /// computed from the first pair of the whole graph with its offset, not the
+  /// first included one, so that the blocks do not depend on include_pair
+  /// (the distributed assembly, system/stiffness.hpp: every process adds the
+  /// serial matrix's blocks, bit for bit).
+  bool cache_from_all_pairs = false;
 };
 
 /// K += K_nl. Pairs whose cells have α ≡ 0 are skipped. Bonds crossing a

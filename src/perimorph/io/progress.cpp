@@ -96,7 +96,14 @@ void ProgressLine::erase() {
   last_width_ = 0;
 }
 
+void ProgressLine::mute() {
+  finish();
+  active_ = false;
+  muted_ = true;
+}
+
 void ProgressLine::message(const std::string& text) {
+  if (muted_) return;
   const bool redraw = active_ && drawn_;
   if (redraw) erase();
   fmt::print(stderr, "{}\n", text);

@@ -55,6 +55,11 @@ class ProgressLine {
   /// starts on a fresh line. Idempotent; no-op when not active.
   void finish();
 
+  /// This process does not report (a distributed run's processes other than
+  /// 0, which compute the same figures): nothing is printed from now on,
+  /// messages included.
+  void mute();
+
   /// True if this line prints (enabled flag set and stderr is a terminal).
   bool active() const { return active_; }
   /// The set-up phases that have ended, in order.
@@ -79,6 +84,7 @@ class ProgressLine {
 
   int total_;
   bool active_;
+  bool muted_ = false;
   bool drawn_ = false;
   bool increments_started_ = false;
   std::size_t last_width_ = 0;

@@ -1,10 +1,12 @@
 #include "perimorph/la/linear_solver.hpp"
 
 #include "perimorph/la/petsc_check.hpp"
+#include "perimorph/la/petsc_session.hpp"
 
 #include <petscksp.h>
 
 #include <algorithm>
+#include <cstring>
 #include <optional>
 
 namespace perimorph::la {
@@ -17,6 +19,19 @@ LinearSolver::LinearSolver(double rtol, int max_iterations) : rtol_(rtol) {
   PM_PETSC(PCSetType(pc, PCGAMG));
   PM_PETSC(KSPSetTolerances(ksp_, rtol, PETSC_DEFAULT, PETSC_DEFAULT, max_iterations));
   PM_PETSC(KSPSetFromOptions(ksp_));
+  // On more than one process a factorization must be a distributed one:
+  // PETSc's own and CHOLMOD's are sequential, so MUMPS takes over from them
+  // (the report's pc_type names it).
+  PCType type = nullptr;
+  PM_PETSC(PCGetType(pc, &type));
+  if (world_size() > 1 && type != nullptr &&
+      (std::strcmp(type, PCCHOLESKY) == 0 || std::strcmp(type, PCLU) == 0)) {
+    MatSolverType solver = nullptr;
+    PM_PETSC(PCFactorGetMatSolverType(pc, &solver));
+    if (solver == nullptr ||
+        (std::strcmp(solver, MATSOLVERMUMPS) != 0 && std::strcmp(solver, MATSOLVERSUPERLU_DIST) != 0))
+      PM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  }
   // Warm start, except for a direct solve (preonly), which PETSc forbids it for.
   PetscBool preonly = PETSC_FALSE;
   PM_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(ksp_), KSPPREONLY, &preonly));
@@ -103,7 +118,7 @@ void LinearSolver::set_operator(Matrix& A, std::span<const Vec3> node_coordinate
   mult_ = [&A](const Vector& x, Vector& y) { A.mult(x, y); };
   op_ = A.handle();
   if (direct_) PM_PETSC(KSPSetOperators(direct_, op_, op_));
-  attach_rigid_body_modes(A.handle(), node_coordinates, dim, A.distribution());
+  attach_rigid_body_modes(A.handle(), node_coordinates, dim, A.distribution().get());
   PM_PETSC(KSPSetOperators(ksp_, A.handle(), A.handle()));
 }
 
@@ -111,7 +126,7 @@ void LinearSolver::set_operators(const ShellMatrix& A, Matrix& P, std::span<cons
                                  int dim) {
   mult_ = [&A](const Vector& x, Vector& y) { A.mult(x, y); };
   op_ = nullptr;  // no entries: no direct fallback
-  attach_rigid_body_modes(P.handle(), node_coordinates, dim, P.distribution());
+  attach_rigid_body_modes(P.handle(), node_coordinates, dim, P.distribution().get());
   PM_PETSC(KSPSetOperators(ksp_, A.handle(), P.handle()));
 }
 

@@ -1,6 +1,7 @@
 #include "perimorph/la/matrix.hpp"
 
 #include "perimorph/core/error.hpp"
+#include "perimorph/la/matrix_distributed_view.hpp"
 #include "perimorph/la/petsc_check.hpp"
 
 #include <petscmat.h>
@@ -40,6 +41,7 @@ bool Matrix::acquire_view() {
 }
 
 void Matrix::release_view() const {
+  release_distributed_view();
   if (!view_held_) return;
   PetscScalar* v = view_.values;
   PM_PETSC(MatSeqAIJRestoreArray(m_, &v));
@@ -103,48 +105,6 @@ Matrix::Matrix(const assembly::SparsityPattern& pattern) {
   direct_ = is_seqaij(m_);
 }
 
-Matrix::Matrix(const assembly::SparsityPattern& pattern, std::shared_ptr<const Distribution> distribution)
-    : distribution_(std::move(distribution)) {
-  const Distribution& d = *distribution_;
-  const Index bs = pattern.block_size;
-  const Index nb = pattern.num_block_rows();
-  if (d.num_nodes() != nb)
-    throw Error(fmt::format("matrix: the distribution has {} dof nodes, the pattern {} block rows",
-                            d.num_nodes(), nb));
-  PM_PETSC(MatCreate(PETSC_COMM_WORLD, &m_));
-  PM_PETSC(MatSetSizes(m_, d.owned_nodes() * bs, d.owned_nodes() * bs, PETSC_DETERMINE, PETSC_DETERMINE));
-  PM_PETSC(MatSetType(m_, MATAIJ));
-  PM_PETSC(MatSetBlockSize(m_, bs));
-  // Block-row counts of the owned rows: columns owned here (diagonal block) or elsewhere.
-  std::vector<PetscInt> dnnz(static_cast<std::size_t>(d.owned_nodes()), 0), onnz(dnnz.size(), 0);
-  std::vector<Index> owned_rows;
-  for (Index r = 0; r < nb; ++r) {
-    if (!d.owns(r)) continue;
-    owned_rows.push_back(r);
-    const auto k = static_cast<std::size_t>(d.to_distributed[static_cast<std::size_t>(r)] - d.begin);
-    for (Index c : pattern.row(r)) ++(d.owns(c) ? dnnz : onnz)[k];
-  }
-  PM_PETSC(MatXAIJSetPreallocation(m_, bs, dnnz.data(), onnz.data(), nullptr, nullptr));
-  ISLocalToGlobalMapping map = nullptr;
-  PM_PETSC(ISLocalToGlobalMappingCreate(PETSC_COMM_SELF, static_cast<PetscInt>(bs), static_cast<PetscInt>(nb),
-                                        d.to_distributed.data(), PETSC_COPY_VALUES, &map));
-  PM_PETSC(MatSetLocalToGlobalMapping(m_, map, map));
-  PM_PETSC(ISLocalToGlobalMappingDestroy(&map));
-  // The whole pattern of the owned rows is stored (explicit zeros), as above.
-  std::vector<PetscScalar> zeros;
-  for (Index r : owned_rows) {
-    const auto cols = pattern.row(r);
-    zeros.assign(cols.size() * static_cast<std::size_t>(bs * bs), 0.0);
-    const PetscInt row = r;
-    PM_PETSC(MatSetValuesBlockedLocal(m_, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(),
-                                      zeros.data(), INSERT_VALUES));
-  }
-  PM_PETSC(MatSetOption(m_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
-  PM_PETSC(MatSetOption(m_, MAT_IGNORE_ZERO_ENTRIES, PETSC_FALSE));
-  finalize();
-  direct_ = false;
-}
-
 Matrix::~Matrix() {
   if (!m_) return;
   try {
@@ -159,7 +119,8 @@ Matrix::Matrix(Matrix&& other) noexcept
       distribution_(std::move(other.distribution_)),
       direct_(other.direct_),
       view_(other.view_),
-      view_held_(other.view_held_) {
+      view_held_(other.view_held_),
+      dview_(std::move(other.dview_)) {
   other.m_ = nullptr;
   other.view_held_ = false;
 }
@@ -178,6 +139,7 @@ Matrix& Matrix::operator=(Matrix&& other) noexcept {
     direct_ = other.direct_;
     view_ = other.view_;
     view_held_ = other.view_held_;
+    dview_ = std::move(other.dview_);
     other.m_ = nullptr;
     other.view_held_ = false;
   }
@@ -186,7 +148,17 @@ Matrix& Matrix::operator=(Matrix&& other) noexcept {
 
 void Matrix::add(std::span<const Index> rows, std::span<const Index> cols, std::span<const double> values) {
   if (distribution_) {
-    PM_PETSC(MatSetValuesLocal(m_, static_cast<PetscInt>(rows.size()), rows.data(),
+    if (acquire_distributed_view()) {
+      add_distributed(rows, cols, values);
+      return;
+    }
+    // Rows of other processes skipped (negative), as add_distributed does.
+    PetscInt bs = 1;
+    PM_PETSC(MatGetBlockSize(m_, &bs));
+    std::vector<PetscInt> owned(rows.begin(), rows.end());
+    for (PetscInt& r : owned)
+      if (r >= 0 && !distribution_->owns(r / bs)) r = -1;
+    PM_PETSC(MatSetValuesLocal(m_, static_cast<PetscInt>(owned.size()), owned.data(),
                                static_cast<PetscInt>(cols.size()), cols.data(), values.data(), ADD_VALUES));
     return;
   }
@@ -266,6 +238,13 @@ void Matrix::eliminate_dirichlet(std::span<const Index> rows, const Vector& x, V
 
 std::vector<double> Matrix::diagonal() const {
   release_view();
+  if (distribution_) {
+    PetscInt bs = 1;
+    PM_PETSC(MatGetBlockSize(m_, &bs));
+    Vector d(distribution_, static_cast<int>(bs));
+    PM_PETSC(MatGetDiagonal(m_, d.handle()));
+    return d.to_replicated();
+  }
   const Index n = rows();
   Vector d(n, 1);
   PM_PETSC(MatGetDiagonal(m_, d.handle()));
@@ -399,32 +378,7 @@ void Matrix::set_values(std::span<const double> values) {
 
 Eigen::MatrixXd Matrix::to_dense() const {
   release_view();
-  if (distribution_) {
-    // The owned rows, by assembly numbering, summed over the processes.
-    const Distribution& d = *distribution_;
-    PetscInt bs = 1;
-    PM_PETSC(MatGetBlockSize(m_, &bs));
-    const Index n = d.num_nodes() * bs;
-    std::vector<Index> to_assembly(static_cast<std::size_t>(n));
-    for (Index node = 0; node < d.num_nodes(); ++node)
-      for (Index k = 0; k < bs; ++k)
-        to_assembly[static_cast<std::size_t>(d.to_distributed[static_cast<std::size_t>(node)] * bs + k)] =
-            node * bs + k;
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
-    PetscInt first = 0, last = 0;
-    PM_PETSC(MatGetOwnershipRange(m_, &first, &last));
-    for (PetscInt r = first; r < last; ++r) {
-      PetscInt ncols = 0;
-      const PetscInt* cols = nullptr;
-      const PetscScalar* vals = nullptr;
-      PM_PETSC(MatGetRow(m_, r, &ncols, &cols, &vals));
-      for (PetscInt k = 0; k < ncols; ++k)
-        A(to_assembly[static_cast<std::size_t>(r)], to_assembly[static_cast<std::size_t>(cols[k])]) = vals[k];
-      PM_PETSC(MatRestoreRow(m_, r, &ncols, &cols, &vals));
-    }
-    MPI_Allreduce(MPI_IN_PLACE, A.data(), static_cast<int>(A.size()), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-    return A;
-  }
+  if (distribution_) return distributed_to_dense();
   const Index n = rows();
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
   for (PetscInt r = 0; r < n; ++r) {

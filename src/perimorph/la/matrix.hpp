@@ -12,9 +12,10 @@
 //
 // Distributed (issue 17): made with a la::Distribution, the matrix is spread
 // over the processes of PETSC_COMM_WORLD by it, and add(), eliminate_dirichlet
-// and to_dense take and give the assembly's numbering (a local-to-global
-// mapping); a process may add to rows another owns (PETSc sends them at
-// finalize). The other operations that take row numbers are for one process.
+// and to_dense take and give the assembly's numbering. add() keeps the rows
+// this process owns and skips the others: their owners compute them ("owner
+// computes", partition/dof_layout.hpp), so nothing is sent. The other
+// operations that take row numbers are for one process.
 
 #include "perimorph/assembly/inserter.hpp"
 #include "perimorph/assembly/sparsity.hpp"
@@ -66,7 +67,8 @@ class Matrix final : public assembly::MatrixInserter {
   /// rhs[rows] = diagonal · x[rows]. The matrix stays symmetric.
   void eliminate_dirichlet(std::span<const Index> rows, const Vector& x, Vector& rhs, double diagonal = 1.0);
 
-  /// The diagonal (MatGetDiagonal).
+  /// The diagonal (MatGetDiagonal); distributed, the whole of it in the
+  /// assembly's numbering on every process (collective).
   std::vector<double> diagonal() const;
   /// The diagonal entries at the given rows (MatGetValues; a finalized matrix).
   std::vector<double> diagonal_at(std::span<const Index> rows) const;
@@ -93,7 +95,7 @@ class Matrix final : public assembly::MatrixInserter {
   /// the assembly's numbering on every process (collective).
   Eigen::MatrixXd to_dense() const;
   /// The distribution (null on one process without one).
-  const Distribution* distribution() const { return distribution_.get(); }
+  const std::shared_ptr<const Distribution>& distribution() const { return distribution_; }
   /// Marks the matrix symmetric positive definite (after finalize).
   void set_spd();
 
@@ -122,12 +124,23 @@ class Matrix final : public assembly::MatrixInserter {
   };
   bool acquire_view();
   void release_view() const;
+  /// Distributed (matrix_distributed.cpp): add() writes the owned rows into
+  /// the arrays of the two blocks PETSc keeps them in (the columns owned here,
+  /// and the others), and keeps the entries of other processes' rows until
+  /// release_view hands them to MatSetValues (sent at finalize).
+  struct DistributedView;
+  bool acquire_distributed_view();
+  void add_distributed(std::span<const Index> rows, std::span<const Index> cols,
+                       std::span<const double> values);
+  void release_distributed_view() const;
+  Eigen::MatrixXd distributed_to_dense() const;
 
   PetscMatHandle m_ = nullptr;
   std::shared_ptr<const Distribution> distribution_;
   bool direct_ = false;  ///< MATSEQAIJ with a fixed structure: add() may write the arrays
   mutable CsrView view_;
   mutable bool view_held_ = false;
+  mutable std::unique_ptr<DistributedView> dview_;
 };
 
 }  // namespace perimorph::la

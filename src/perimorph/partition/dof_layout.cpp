@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <numeric>
 
 namespace perimorph::partition {
@@ -52,15 +53,15 @@ DofLayout dof_layout(const dofs::DofMap& dofmap, const Partition& p, const bonds
   for (std::size_t n = 0; n < nodes; ++n)
     out.to_distributed[n] = next[static_cast<std::size_t>(out.node_owner[n])]++;
 
-  // Ghosts: the nodes of the cells a part assembles (its own, and F of its
-  // pairs (E, F), E ≤ F) that another part owns. A node is marked once per part.
+  // Ghosts: the nodes of the cells a part computes (touching an owned node)
+  // and of their neighbours in the cell graph, owned by another part.
   out.ghosts.assign(parts, {});
   std::vector<int> marked(nodes, -1);
-  std::vector<std::vector<Index>> owned_cells(parts);
-  for (Index c = 0; c < cells; ++c)
-    owned_cells[static_cast<std::size_t>(p.owner[static_cast<std::size_t>(c)])].push_back(c);
   for (std::size_t part = 0; part < parts; ++part) {
     auto& ghosts = out.ghosts[part];
+    const auto touching = cells_touching(dofmap, [&](Index n) {
+      return out.node_owner[static_cast<std::size_t>(n)] == static_cast<int>(part);
+    });
     const auto mark_cell = [&](Index c) {
       for (Index n : dofmap.cell_nodes(c)) {
         const auto k = static_cast<std::size_t>(n);
@@ -69,10 +70,10 @@ DofLayout dof_layout(const dofs::DofMap& dofmap, const Partition& p, const bonds
         if (out.node_owner[k] != static_cast<int>(part)) ghosts.push_back(n);
       }
     };
-    for (Index e : owned_cells[part]) {
+    for (Index e = 0; e < cells; ++e) {
+      if (!touching[static_cast<std::size_t>(e)]) continue;
       mark_cell(e);
-      for (Index f : graph.row(e))
-        if (f > e) mark_cell(f);
+      for (Index f : graph.row(e)) mark_cell(f);
     }
     std::sort(ghosts.begin(), ghosts.end());
   }

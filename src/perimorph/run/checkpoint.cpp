@@ -37,9 +37,10 @@ std::string find_checkpoint(const std::string& given, const std::string& basenam
   if (fs::is_directory(given, ec)) {
     const std::string p = checkpoint_path(given, basename);
     if (fs::is_regular_file(p, ec)) return p;
-    throw InputError(fmt::format("--restart {}: no checkpoint {} there (a run writes it with [output] "
-                                 "checkpoint_every = N, or when stopped by SIGINT/SIGTERM between increments)",
-                                 given, p));
+    throw InputError(
+        fmt::format("--restart {}: no checkpoint {} there (a run writes it with [output] "
+                    "checkpoint_every = N, or when stopped by SIGINT/SIGTERM between increments)",
+                    given, p));
   }
   throw InputError(fmt::format("--restart {}: no such file or directory", given));
 }
@@ -71,9 +72,10 @@ void check_header(core::BinaryReader& in, const casefile::CaseConfig& config) {
   }
   const auto version = in.get<std::uint32_t>();
   if (version != kCheckpointVersion)
-    throw InputError(fmt::format("{}: checkpoint format version {}, this perimorph reads version {}: "
-                                 "continue it with the perimorph that wrote it, or start the run again",
-                                 in.source(), version, kCheckpointVersion));
+    throw InputError(
+        fmt::format("{}: checkpoint format version {}, this perimorph reads version {}: "
+                    "continue it with the perimorph that wrote it, or start the run again",
+                    in.source(), version, kCheckpointVersion));
   std::vector<std::pair<std::string, std::string>> saved;
   const auto n = in.get<std::uint64_t>();
   for (std::uint64_t k = 0; k < n; ++k) {
@@ -92,10 +94,11 @@ void check_header(core::BinaryReader& in, const casefile::CaseConfig& config) {
     };
     lines.push_back(fmt::format("  {}: {} in the checkpoint, {} now", key, value(saved), value(now)));
   }
-  throw InputError(fmt::format("{}: the case {} has changed since this checkpoint was written; a restart "
-                               "continues the same case only ([output] checkpoint_every may change). "
-                               "Differing keys:\n{}",
-                               in.source(), config.path, fmt::join(lines, "\n")));
+  throw InputError(
+      fmt::format("{}: the case {} has changed since this checkpoint was written; a restart "
+                  "continues the same case only ([output] checkpoint_every may change). "
+                  "Differing keys:\n{}",
+                  in.source(), config.path, fmt::join(lines, "\n")));
 }
 
 }  // namespace perimorph::run

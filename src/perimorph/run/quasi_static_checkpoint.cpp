@@ -78,7 +78,8 @@ void QuasiStaticRun::restore(const std::string& path, const RunOptions& /*option
 
   in.expect("run");
   const double elapsed = in.get<double>();
-  start_ -= std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(elapsed));
+  start_ -=
+      std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(elapsed));
   balls_written_ = in.get<std::uint64_t>();
   remodel_seconds_ = in.get<double>();
   summary_.preconditioner_rebuilds = in.get<int>();
@@ -122,8 +123,8 @@ void QuasiStaticRun::restore(const std::string& path, const RunOptions& /*option
                                         summary_.reaction_names, &at);
   summary_.checkpoint_path = path;
   summary_.checkpoint_increment = state_.increment;
-  progress_->message(fmt::format("continuing after increment {} of {} from {}", state_.increment,
-                                 increments(), path));
+  progress_->message(
+      fmt::format("continuing after increment {} of {} from {}", state_.increment, increments(), path));
 }
 
 }  // namespace perimorph::run

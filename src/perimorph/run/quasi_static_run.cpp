@@ -60,11 +60,14 @@ QuasiStaticRun::QuasiStaticRun(const setup::Discretization& disc, const RunOptio
                                                             std::move(setup_.bc), setup_.F);
     } else {
       progress_->phase("assembly");
-      system::AssembledStiffness assembled = system::assemble_stiffness(disc);
+      system::AssembledStiffness assembled = system::assemble_stiffness_over_processes(disc);
       progress_->phase("solver set-up");
       system_ = std::make_unique<system::ConstrainedSystem>(disc, std::move(assembled.K),
                                                             std::move(setup_.bc), setup_.F);
     }
+    // Laid out as the system (spread over the processes with it).
+    u_ = system_->make_vector();
+    internal_ = system_->make_vector();
     for (const auto& s : setup_.sets) summary_.reaction_names.push_back(s.name);
     output_ = std::make_unique<RunOutput>(disc, summary_.output_directory, basename_of(config),
                                           summary_.reaction_names);
@@ -132,8 +135,8 @@ void QuasiStaticRun::solve() {
     // Work of all external forces (applied + reactions = K u at equilibrium)
     // on the elastic step from the last state.
     system_->apply_K(u_, internal_);
-    state_.u = u_.to_std();
-    fint_ = internal_.to_std();
+    state_.u = u_.to_replicated();
+    fint_ = internal_.to_replicated();
     for (std::size_t k = 0; k < state_.u.size(); ++k)
       work += 0.5 * (fint_[k] + fint_prev_[k]) * (state_.u[k] - u_prev_[k]);
     return;
@@ -147,7 +150,7 @@ void QuasiStaticRun::solve() {
                              fracture_->applied_energy(), max_stretch / fracture_->s_crit(),
                              summary_.last_solve, iteration_seconds);
   }
-  state_.u = u_.to_std();
+  state_.u = u_.to_replicated();
   const std::vector<double>& F = system_->applied_force();
   for (std::size_t k = 0; k < state_.u.size(); ++k) work += lambda * F[k] * (state_.u[k] - u_before[k]);
 }
@@ -220,7 +223,7 @@ void QuasiStaticRun::record(bool force_vtu) {
   const std::vector<double>& F = system_->applied_force();
   if ((fracture_ || damage_) && rec_.break_iterations > 0) {
     system_->apply_K(u_, internal_);
-    fint_ = internal_.to_std();
+    fint_ = internal_.to_replicated();
   }
   if (damage_) {
     const evolution::EnergyLedger& e = state_.energy;

@@ -3,6 +3,7 @@
 #include "perimorph/core/error.hpp"
 #include "perimorph/io/grid.hpp"
 #include "perimorph/io/vtu_writer.hpp"
+#include "perimorph/la/petsc_session.hpp"
 
 #include <fmt/format.h>
 
@@ -49,6 +50,7 @@ RunOutput::RunOutput(const setup::Discretization& model, std::string directory, 
       fracture_(model.config.fracture.enabled),
       adaptive_(model.config.adaptivity.enabled),
       damage_(model.damage.has_value()) {
+  if (la::world_rank() != 0) return;  // process 0 writes (every process holds the whole state)
   std::error_code ec;
   std::filesystem::create_directories(directory_, ec);
   if (ec) throw OutputError(fmt::format("cannot create output directory '{}': {}", directory_, ec.message()));
@@ -105,6 +107,7 @@ RunOutput::RunOutput(const setup::Discretization& model, std::string directory, 
 
 OutputPosition RunOutput::position() const {
   OutputPosition p;
+  if (!csv_) return p;
   p.rows = csv_->rows();
   if (alpha_csv_) p.alpha_rows = alpha_csv_->rows();
   if (failures_csv_) p.failure_rows = failures_csv_->rows();
@@ -219,6 +222,7 @@ void RunOutput::write_increment_vtu(const setup::Discretization& model, int incr
 }
 
 void RunOutput::add_row(const IncrementRecord& r) {
+  if (!csv_) return;
   std::vector<double> row{static_cast<double>(r.increment), r.load_factor};
   for (const Vec3& f : r.reactions)
     for (int d = 0; d < dim_; ++d) row.push_back(f[d]);

@@ -69,6 +69,8 @@ class RunOutput {
   /// Creates `directory` (and parents). Files: BASENAME.csv, BASENAME.pvd,
   /// BASENAME_NNNN.vtu. With `resume`, continues the files there after that
   /// position (later rows are cut off; io::CsvTable) instead of starting them.
+  /// On more than one MPI process, process 0 writes everything (each holds
+  /// the whole state) and the others' RunOutput writes nothing.
   RunOutput(const setup::Discretization& model, std::string directory, std::string basename,
             std::vector<std::string> reaction_names, const OutputPosition* resume = nullptr);
   OutputPosition position() const;

@@ -36,6 +36,12 @@ struct ConstrainedSystem::MatrixFree {
 
 namespace {
 
+/// A dof vector with K's layout.
+la::Vector dof_vector(const la::Matrix& K, const setup::Discretization& model) {
+  if (K.distribution()) return la::Vector(K.distribution(), model.dim());
+  return la::Vector(model.dofmap.num_dofs(), model.dim());
+}
+
 la::Matrix no_matrix(int dim) {
   assembly::SparsityPattern p;
   p.block_size = dim;
@@ -52,8 +58,8 @@ ConstrainedSystem::ConstrainedSystem(const setup::Discretization& model, la::Mat
       A_(K_.duplicate()),
       bc_(std::move(bc)),
       applied_force_(F.begin(), F.end()),
-      rhs_unit_(model.dofmap.num_dofs(), model.dim()),
-      rhs_(model.dofmap.num_dofs(), model.dim()) {
+      rhs_unit_(dof_vector(K_, model)),
+      rhs_(dof_vector(K_, model)) {
   constrain_rhs(F);
   initial_diagonal_ = A_.diagonal();
 }
@@ -85,16 +91,20 @@ ConstrainedSystem::ConstrainedSystem(const setup::Discretization& model, MatrixF
 ConstrainedSystem::~ConstrainedSystem() = default;
 ConstrainedSystem::ConstrainedSystem(ConstrainedSystem&&) noexcept = default;
 
+la::Vector ConstrainedSystem::make_vector() const {
+  return dof_vector(K_, model_);
+}
+
 void ConstrainedSystem::constrain_rhs(std::span<const double> F) {
   const Index n = model_.dofmap.num_dofs();
-  la::Vector g(n, model_.dim());
+  la::Vector g = make_vector();
   std::vector<double> gv(static_cast<std::size_t>(n), 0.0);
   prescribed_.assign(static_cast<std::size_t>(n), std::nan(""));
   for (std::size_t k = 0; k < bc_.dofs.size(); ++k) {
     gv[static_cast<std::size_t>(bc_.dofs[k])] = bc_.values[k];
     prescribed_[static_cast<std::size_t>(bc_.dofs[k])] = bc_.values[k];
   }
-  g.assign(gv);
+  g.assign_replicated(gv);
   if (free_) {
     // b = F − K g on the free rows, g on the prescribed ones (as eliminate_dirichlet).
     la::Vector Kg(n, model_.dim());
@@ -104,7 +114,7 @@ void ConstrainedSystem::constrain_rhs(std::span<const double> F) {
     rhs_unit_.assign(b);
     return;
   }
-  rhs_unit_.assign(F);
+  rhs_unit_.assign_replicated(F);
   A_.eliminate_dirichlet(bc_.dofs, g, rhs_unit_);
   A_.set_spd();
 }

@@ -59,6 +59,9 @@ class ConstrainedSystem {
                                                      core::BinaryReader& in);
   void save(core::BinaryWriter& out) const;
 
+  /// A dof vector laid out as the system's (spread over the processes as K
+  /// is, or serial), zero.
+  la::Vector make_vector() const;
   /// The case's solver ([solver] rtol, max_iterations; PETSc options from the
   /// options database) on A, with the rigid-body near-null space of the nodes.
   void attach_solver();

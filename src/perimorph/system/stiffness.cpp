@@ -1,6 +1,7 @@
 #include "perimorph/system/stiffness.hpp"
 
 #include "perimorph/assembly/sparsity.hpp"
+#include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/partition/dof_layout.hpp"
 
@@ -16,7 +17,8 @@ double seconds_since(clock::time_point a) {
 }
 
 /// Adds the cells for which `own_cell` holds and the pairs for which
-/// `own_pair` holds (all if empty) into out.K, and finalizes it.
+/// `own_pair` holds (all if empty) into out.K, and finalizes it; the pairs'
+/// blocks are those of the whole assembly (cache_from_all_pairs).
 void assemble_into(AssembledStiffness& out, const setup::Discretization& model,
                    const bonds::BrokenBonds* broken, std::span<const double> damage,
                    const std::function<bool(Index)>& own_cell,
@@ -34,6 +36,7 @@ void assemble_into(AssembledStiffness& out, const setup::Discretization& model,
     const assembly::NonlocalSpace space = model.nonlocal_space(broken);
     assembly::NonlocalOptions options;
     options.include_pair = own_pair;
+    options.cache_from_all_pairs = true;
     out.nonlocal = assembly::assemble_nonlocal(space, out.K, options);
     out.nonlocal_seconds = seconds_since(t0);
   }
@@ -60,19 +63,33 @@ std::shared_ptr<const la::Distribution> distribution_of(const partition::DofLayo
   return d;
 }
 
-AssembledStiffness assemble_stiffness(const setup::Discretization& model, const partition::Partition& p,
+AssembledStiffness assemble_stiffness(const setup::Discretization& model,
                                       const std::shared_ptr<const la::Distribution>& distribution,
                                       const bonds::BrokenBonds* broken, std::span<const double> damage) {
   const auto t0 = clock::now();
-  const int part = la::world_rank();
   const bonds::CellGraph* graph = model.nonlocal ? &model.nonlocal->graph : nullptr;
   AssembledStiffness out{
       la::Matrix(assembly::build_sparsity(model.dofmap, graph), distribution), {}, 0.0, 0.0, 0.0};
+  // Owner computes: the cells and pairs touching an owned node, their owned rows kept.
+  const std::vector<char> touching =
+      partition::cells_touching(model.dofmap, [&](Index n) { return distribution->owns(n); });
   out.setup_seconds = seconds_since(t0);
   assemble_into(
-      out, model, broken, damage, [&](Index c) { return p.owner[static_cast<std::size_t>(c)] == part; },
-      [&](Index e, Index f) { return partition::pair_assembler(p, e, f) == part; });
+      out, model, broken, damage, [&](Index c) { return touching[static_cast<std::size_t>(c)] != 0; },
+      [&](Index e, Index f) {
+        return touching[static_cast<std::size_t>(e)] != 0 || touching[static_cast<std::size_t>(f)] != 0;
+      });
   return out;
+}
+
+AssembledStiffness assemble_stiffness_over_processes(const setup::Discretization& model) {
+  if (la::world_size() == 1) return assemble_stiffness(model);
+  const partition::Partition p = partition::coordinate_bisection(model.mesh, la::world_size());
+  const bonds::CellGraph local_graph =
+      model.nonlocal ? bonds::CellGraph{} : bonds::CellGraph::diagonal(model.mesh.num_cells());
+  const bonds::CellGraph& graph = model.nonlocal ? model.nonlocal->graph : local_graph;
+  return assemble_stiffness(model,
+                            distribution_of(partition::dof_layout(model.dofmap, p, graph), la::world_rank()));
 }
 
 }  // namespace perimorph::system

@@ -11,9 +11,8 @@
 #include <span>
 
 namespace perimorph::partition {
-struct Partition;
 struct DofLayout;
-}  // namespace perimorph::partition
+}
 
 namespace perimorph::system {
 
@@ -34,14 +33,19 @@ AssembledStiffness assemble_stiffness(const setup::Discretization& model,
 /// its rank) for la::Matrix and la::Vector.
 std::shared_ptr<const la::Distribution> distribution_of(const partition::DofLayout& layout, int part);
 
-/// The same spread over the processes of PETSC_COMM_WORLD (issue 17; part =
-/// rank): this process assembles the local blocks of the cells `p` gives it and
-/// the bonds of the cell pairs partition::pair_assembler gives it, into K
-/// distributed by `distribution` (distribution_of); over all processes every
-/// cell and every bond is assembled once. Collective.
-AssembledStiffness assemble_stiffness(const setup::Discretization& model, const partition::Partition& p,
+/// The same spread over the processes of PETSC_COMM_WORLD by `distribution`
+/// (distribution_of; issue 17): this process computes the cells and cell
+/// pairs that touch the nodes it owns and keeps their rows
+/// (partition/dof_layout.hpp, "owner computes"), so K is the serial matrix bit
+/// for bit and no entry travels. Collective.
+AssembledStiffness assemble_stiffness(const setup::Discretization& model,
                                       const std::shared_ptr<const la::Distribution>& distribution,
                                       const bonds::BrokenBonds* broken = nullptr,
                                       std::span<const double> damage = {});
+
+/// K spread over the processes of PETSC_COMM_WORLD: the cells cut into one
+/// part per process by partition::coordinate_bisection, the dofs laid out by
+/// partition::dof_layout. On one process, assemble_stiffness(model). Collective.
+AssembledStiffness assemble_stiffness_over_processes(const setup::Discretization& model);
 
 }  // namespace perimorph::system

@@ -1,0 +1,184 @@
+// The distributed parts of la::Matrix (matrix.hpp, issue 17): the
+// constructor from a Distribution, add() into the owned rows' arrays, and the
+// dense copy gathered on every process.
+
+#include "perimorph/core/error.hpp"
+#include "perimorph/la/matrix.hpp"
+#include "perimorph/la/matrix_distributed_view.hpp"
+#include "perimorph/la/petsc_check.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace perimorph::la {
+
+Matrix::Matrix(const assembly::SparsityPattern& pattern, std::shared_ptr<const Distribution> distribution)
+    : distribution_(std::move(distribution)) {
+  const Distribution& d = *distribution_;
+  const Index bs = pattern.block_size;
+  const Index nb = pattern.num_block_rows();
+  if (d.num_nodes() != nb)
+    throw Error(fmt::format("matrix: the distribution has {} dof nodes, the pattern {} block rows",
+                            d.num_nodes(), nb));
+  PM_PETSC(MatCreate(PETSC_COMM_WORLD, &m_));
+  PM_PETSC(MatSetSizes(m_, d.owned_nodes() * bs, d.owned_nodes() * bs, PETSC_DETERMINE, PETSC_DETERMINE));
+  PM_PETSC(MatSetType(m_, MATAIJ));
+  PM_PETSC(MatSetBlockSize(m_, bs));
+  // Block-row counts of the owned rows: columns owned here (diagonal block) or elsewhere.
+  std::vector<PetscInt> dnnz(static_cast<std::size_t>(d.owned_nodes()), 0), onnz(dnnz.size(), 0);
+  std::vector<Index> owned_rows;
+  for (Index r = 0; r < nb; ++r) {
+    if (!d.owns(r)) continue;
+    owned_rows.push_back(r);
+    const auto k = static_cast<std::size_t>(d.to_distributed[static_cast<std::size_t>(r)] - d.begin);
+    for (Index c : pattern.row(r)) ++(d.owns(c) ? dnnz : onnz)[k];
+  }
+  PM_PETSC(MatXAIJSetPreallocation(m_, bs, dnnz.data(), onnz.data(), nullptr, nullptr));
+  ISLocalToGlobalMapping map = nullptr;
+  PM_PETSC(ISLocalToGlobalMappingCreate(PETSC_COMM_SELF, static_cast<PetscInt>(bs), static_cast<PetscInt>(nb),
+                                        d.to_distributed.data(), PETSC_COPY_VALUES, &map));
+  PM_PETSC(MatSetLocalToGlobalMapping(m_, map, map));
+  PM_PETSC(ISLocalToGlobalMappingDestroy(&map));
+  // The whole pattern of the owned rows is stored (explicit zeros), as above.
+  std::vector<PetscScalar> zeros;
+  for (Index r : owned_rows) {
+    const auto cols = pattern.row(r);
+    zeros.assign(cols.size() * static_cast<std::size_t>(bs * bs), 0.0);
+    const PetscInt row = r;
+    PM_PETSC(MatSetValuesBlockedLocal(m_, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(),
+                                      zeros.data(), INSERT_VALUES));
+  }
+  PM_PETSC(MatSetOption(m_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PM_PETSC(MatSetOption(m_, MAT_IGNORE_ZERO_ENTRIES, PETSC_FALSE));
+  finalize();
+  direct_ = false;
+}
+
+bool Matrix::acquire_distributed_view() {
+  if (dview_) return true;
+  PetscBool mpiaij = PETSC_FALSE;
+  PM_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(m_), MATMPIAIJ, &mpiaij));
+  if (!mpiaij) return false;  // one process (SeqAIJ): MatSetValuesLocal
+  auto v = std::make_unique<DistributedView>();
+  PM_PETSC(MatMPIAIJGetSeqAIJ(m_, &v->diag, &v->off, &v->garray));
+  PetscInt noff = 0;
+  PM_PETSC(MatGetSize(v->off, nullptr, &noff));
+  if (!std::is_sorted(v->garray, v->garray + noff)) return false;  // searched by global column below
+  PM_PETSC(MatGetOwnershipRange(m_, &v->rstart, &v->rend));
+  PetscInt bs = 1;
+  PM_PETSC(MatGetBlockSize(m_, &bs));
+  const Distribution& dist = *distribution_;
+  v->to_dof.resize(static_cast<std::size_t>(dist.num_nodes() * bs));
+  for (Index n = 0; n < dist.num_nodes(); ++n)
+    for (Index k = 0; k < bs; ++k)
+      v->to_dof[static_cast<std::size_t>(n * bs + k)] =
+          dist.to_distributed[static_cast<std::size_t>(n)] * bs + k;
+  const auto borrow = [](Mat a, CsrView& view) {
+    PetscInt n = 0;
+    const PetscInt *ia = nullptr, *ja = nullptr;
+    PetscBool done = PETSC_FALSE;
+    PM_PETSC(MatGetRowIJ(a, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+    if (!done) return false;
+    PetscScalar* values = nullptr;
+    PM_PETSC(MatSeqAIJGetArray(a, &values));
+    view = {ia, ja, values, n};
+    return true;
+  };
+  if (!borrow(v->diag, v->d)) return false;
+  if (!borrow(v->off, v->o)) {
+    PetscScalar* values = v->d.values;
+    PM_PETSC(MatSeqAIJRestoreArray(v->diag, &values));
+    PetscInt n = v->d.n;
+    PetscBool done = PETSC_FALSE;
+    PM_PETSC(MatRestoreRowIJ(v->diag, 0, PETSC_FALSE, PETSC_FALSE, &n, &v->d.ia, &v->d.ja, &done));
+    return false;
+  }
+  dview_ = std::move(v);
+  return true;
+}
+
+void Matrix::add_distributed(std::span<const Index> rows, std::span<const Index> cols,
+                             std::span<const double> values) {
+  // MatSetValues(ADD_VALUES)'s semantics, as the serial direct path: negative
+  // indices skipped, values summed in row-major order, an entry outside the
+  // pattern an error; rows of other processes skipped (their owners compute them).
+  DistributedView& v = *dview_;
+  const std::size_t nc = cols.size();
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i] < 0) continue;
+    const PetscInt gr = v.to_dof[static_cast<std::size_t>(rows[i])];
+    const double* vrow = values.data() + i * nc;
+    if (gr < v.rstart || gr >= v.rend) continue;
+    const PetscInt lr = gr - v.rstart;
+    const PetscInt *dfirst = v.d.ja + v.d.ia[lr], *dlast = v.d.ja + v.d.ia[lr + 1];
+    const PetscInt *ofirst = v.o.ja + v.o.ia[lr], *olast = v.o.ja + v.o.ia[lr + 1];
+    const PetscInt* at = nullptr;  // the last diagonal-block entry written (runs of columns)
+    for (std::size_t j = 0; j < nc; ++j) {
+      if (cols[j] < 0) continue;
+      const PetscInt gc = v.to_dof[static_cast<std::size_t>(cols[j])];
+      if (gc >= v.rstart && gc < v.rend) {
+        const PetscInt c = gc - v.rstart;
+        if (at != nullptr && at + 1 < dlast && at[1] == c)
+          ++at;
+        else {
+          at = std::lower_bound(dfirst, dlast, c);
+          if (at == dlast || *at != c)
+            throw Error(fmt::format("matrix entry ({}, {}) is outside the preallocated sparsity pattern",
+                                    rows[i], cols[j]));
+        }
+        v.d.values[at - v.d.ja] += vrow[j];
+      } else {
+        const PetscInt* o =
+            std::lower_bound(ofirst, olast, gc, [&](PetscInt k, PetscInt g) { return v.garray[k] < g; });
+        if (o == olast || v.garray[*o] != gc)
+          throw Error(fmt::format("matrix entry ({}, {}) is outside the preallocated sparsity pattern",
+                                  rows[i], cols[j]));
+        v.o.values[o - v.o.ja] += vrow[j];
+      }
+    }
+  }
+}
+
+void Matrix::release_distributed_view() const {
+  if (!dview_) return;
+  const std::unique_ptr<DistributedView> v = std::move(dview_);
+  for (auto [a, view] : {std::pair{v->diag, &v->d}, std::pair{v->off, &v->o}}) {
+    PetscScalar* values = view->values;
+    PM_PETSC(MatSeqAIJRestoreArray(a, &values));
+    PetscInt n = view->n;
+    const PetscInt *ia = view->ia, *ja = view->ja;
+    PetscBool done = PETSC_FALSE;
+    PM_PETSC(MatRestoreRowIJ(a, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
+  }
+}
+
+Eigen::MatrixXd Matrix::distributed_to_dense() const {
+  release_view();
+  // The owned rows, by assembly numbering, summed over the processes.
+  const Distribution& d = *distribution_;
+  PetscInt bs = 1;
+  PM_PETSC(MatGetBlockSize(m_, &bs));
+  const Index n = d.num_nodes() * bs;
+  std::vector<Index> to_assembly(static_cast<std::size_t>(n));
+  for (Index node = 0; node < d.num_nodes(); ++node)
+    for (Index k = 0; k < bs; ++k)
+      to_assembly[static_cast<std::size_t>(d.to_distributed[static_cast<std::size_t>(node)] * bs + k)] =
+          node * bs + k;
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+  PetscInt first = 0, last = 0;
+  PM_PETSC(MatGetOwnershipRange(m_, &first, &last));
+  for (PetscInt r = first; r < last; ++r) {
+    PetscInt ncols = 0;
+    const PetscInt* cols = nullptr;
+    const PetscScalar* vals = nullptr;
+    PM_PETSC(MatGetRow(m_, r, &ncols, &cols, &vals));
+    for (PetscInt k = 0; k < ncols; ++k)
+      A(to_assembly[static_cast<std::size_t>(r)], to_assembly[static_cast<std::size_t>(cols[k])]) = vals[k];
+    PM_PETSC(MatRestoreRow(m_, r, &ncols, &cols, &vals));
+  }
+  MPI_Allreduce(MPI_IN_PLACE, A.data(), static_cast<int>(A.size()), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  return A;
+}
+
+}  // namespace perimorph::la

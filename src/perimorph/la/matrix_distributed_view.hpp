@@ -1,0 +1,21 @@
+#pragma once
+// la/ internal: what a distributed la::Matrix holds while add() writes into
+// PETSc's arrays (matrix_distributed.cpp).
+
+#include "perimorph/la/matrix.hpp"
+
+#include <petscmat.h>
+
+#include <vector>
+
+namespace perimorph::la {
+
+struct Matrix::DistributedView {
+  Mat diag = nullptr, off = nullptr;  ///< MPIAIJ's blocks: owned columns, the others (borrowed)
+  const PetscInt* garray = nullptr;   ///< the off block's columns, global and ascending
+  CsrView d, o;                       ///< their arrays, borrowed until release
+  PetscInt rstart = 0, rend = 0;      ///< owned rows (= owned columns)
+  std::vector<PetscInt> to_dof;       ///< assembly dof → distributed dof
+};
+
+}  // namespace perimorph::la

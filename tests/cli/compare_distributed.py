@@ -1,0 +1,85 @@
+#!/usr/bin/python3
+"""compare_distributed.py SERIAL_DIR DISTRIBUTED_DIR RTOL: exit 0 if a run on several MPI processes
+wrote what the run on one wrote (issue 17, same answers): the same files; every CSV column but the
+timing and solver columns (wall_time, remodel_time, solver_iterations, relative_residual) within RTOL
+of the column's largest magnitude, row by row (the reaction columns of the largest reaction component:
+a component that is zero up to round-off has no scale of its own); every VTU's points equal and every point and cell array
+within RTOL of the array's largest magnitude. Prints the worst difference of each file and the solver
+iterations of both runs (a parallel preconditioner needs a few more or fewer)."""
+import csv
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
+from read_vtu import read_vtu  # noqa: E402
+
+UNCOMPARED = ("wall_time", "remodel_time", "solver_iterations", "relative_residual")
+
+
+def table(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def worst(a, b, scale=None):
+    """Largest |a − b| relative to `scale`, by default the largest |a| (absolute where a is all zero)."""
+    if len(a) != len(b):
+        return float("inf")
+    scale = scale or max((abs(x) for x in a), default=0.0) or 1.0
+    return max((abs(x - y) for x, y in zip(a, b)), default=0.0) / scale
+
+
+def values(array):
+    data = array["values"] if isinstance(array, dict) and "values" in array else array["data"]
+    return [float(x) for x in data]
+
+
+serial, distributed, rtol = sys.argv[1], sys.argv[2], float(sys.argv[3])
+failures = []
+names = sorted(n for n in os.listdir(serial) if not n.endswith((".lock", ".tmp", ".checkpoint")))
+missing = [n for n in names if not os.path.exists(os.path.join(distributed, n))]
+if missing:
+    sys.exit(f"missing in {distributed}: {', '.join(missing)}")
+for name in names:
+    a, b = os.path.join(serial, name), os.path.join(distributed, name)
+    if name.endswith(".csv"):
+        ta, tb = table(a), table(b)
+        if len(ta) != len(tb) or (ta and ta[0].keys() != tb[0].keys()):
+            failures.append(f"{name}: rows or columns differ")
+            continue
+        columns = [c for c in (ta[0].keys() if ta else []) if c not in UNCOMPARED]
+        reaction_scale = max((abs(float(r[c])) for r in ta for c in columns if c.startswith("reaction_")),
+                             default=0.0)
+        diff = {c: worst([float(r[c]) for r in ta], [float(r[c]) for r in tb],
+                         reaction_scale if c.startswith("reaction_") else None)
+                for c in columns}
+        col = max(diff, key=diff.get) if diff else "-"
+        its = ""
+        if ta and "solver_iterations" in ta[0]:
+            its = (f"; solver iterations {[int(float(r['solver_iterations'])) for r in ta]} serial, "
+                   f"{[int(float(r['solver_iterations'])) for r in tb]} distributed")
+        print(f"{name}: worst column {col}, {diff.get(col, 0.0):.2e}{its}")
+        failures += [f"{name}: column {c} differs by {d:.2e}" for c, d in diff.items() if not d <= rtol]
+    elif name.endswith(".vtu"):
+        va, vb = read_vtu(a), read_vtu(b)
+        if va["points"] != vb["points"] or va["cells"] != vb["cells"]:
+            failures.append(f"{name}: points or cells differ")
+            continue
+        diffs = {}
+        for key in ("point_data", "cell_data"):
+            if va[key].keys() != vb[key].keys():
+                failures.append(f"{name}: {key} arrays differ")
+                continue
+            for arr in va[key]:
+                diffs[arr] = worst(values(va[key][arr]), values(vb[key][arr]))
+        col = max(diffs, key=diffs.get) if diffs else "-"
+        print(f"{name}: worst array {col}, {diffs.get(col, 0.0):.2e}")
+        failures += [f"{name}: array {c} differs by {d:.2e}" for c, d in diffs.items() if not d <= rtol]
+    else:
+        with open(a, "rb") as fa, open(b, "rb") as fb:
+            if fa.read() != fb.read():
+                failures.append(f"{name}: differs")
+for f in failures:
+    print(f, file=sys.stderr)
+print(f"{len(names)} files compared, tolerance {rtol}: {'ok' if not failures else f'{len(failures)} differences'}")
+sys.exit(1 if failures else 0)
