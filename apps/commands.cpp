@@ -225,6 +225,13 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
     for (std::size_t k = 0; k < summary.reactions.size(); ++k)
       fmt::print("reaction on '{}': ({:.6e}, {:.6e}, {:.6e})\n", summary.reaction_names[k],
                  summary.reactions[k].x(), summary.reactions[k].y(), summary.reactions[k].z());
+    std::vector<std::string> phases;
+    for (const auto& ph : progress.phases())
+      phases.push_back(fmt::format("{} {:.2f} s", ph.name, ph.seconds));
+    fmt::print(
+        "set-up{}: {}\n",
+        perimorph::la::world_size() > 1 ? fmt::format(" (process 0 of {})", perimorph::la::world_size()) : "",
+        fmt::join(phases, ", "));
     fmt::print("wrote {}{}\n", summary.csv_path, summary.pvd_path.empty() ? "" : " and " + summary.pvd_path);
     if (!summary.checkpoint_path.empty() && summary.checkpoint_increment > summary.restarted_after)
       fmt::print("checkpoint of increment {}: {}\n", summary.checkpoint_increment, summary.checkpoint_path);

@@ -2,6 +2,7 @@
 
 #include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/la/graph_partition.hpp"
+#include "perimorph/partition/dof_layout.hpp"
 #include "perimorph/partition/partition.hpp"
 
 #include <fmt/format.h>
@@ -40,6 +41,35 @@ std::string partition_report(const setup::Discretization& disc, int parts) {
         parts, parts > 1 ? la::partition_graph(graph.offsets, graph.neighbors, parts, "ptscotch")
                          : std::vector<int>(static_cast<std::size_t>(disc.mesh.num_cells()), 0)};
   });
+  // What a distributed run does with the bisection (owner computes,
+  // partition/dof_layout.hpp): each part computes the cells and pairs that
+  // touch its nodes, those touching two parts twice.
+  const partition::Partition p = partition::coordinate_bisection(disc.mesh, parts);
+  const bonds::CellGraph& bonds_graph = disc.nonlocal ? disc.nonlocal->graph : diagonal;
+  const partition::DofLayout layout = partition::dof_layout(disc.dofmap, p, bonds_graph);
+  Index max_owned = 0, max_ghosts = 0;
+  std::size_t cells_computed = 0, pairs_computed = 0;
+  for (int q = 0; q < parts; ++q) {
+    max_owned = std::max(max_owned, layout.owned_nodes(q));
+    max_ghosts = std::max(max_ghosts, static_cast<Index>(layout.ghosts[static_cast<std::size_t>(q)].size()));
+    const auto touching = partition::cells_touching(
+        disc.dofmap, [&](Index n) { return layout.node_owner[static_cast<std::size_t>(n)] == q; });
+    for (Index e = 0; e < disc.mesh.num_cells(); ++e) {
+      const bool te = touching[static_cast<std::size_t>(e)] != 0;
+      cells_computed += te;
+      for (Index f : bonds_graph.row(e))
+        if (f >= e && (te || touching[static_cast<std::size_t>(f)] != 0)) ++pairs_computed;
+    }
+  }
+  const auto per = [](std::size_t a, std::size_t b) {
+    return b ? static_cast<double>(a) / static_cast<double>(b) : 0.0;
+  };
+  out += fmt::format(
+      "           owner computes (coordinate bisection): max owned dof nodes {}, max ghost nodes {} "
+      "(ghosts/owned {:.3f}); cells computed {:.3f}× and cell pairs {:.3f}× those of one process\n",
+      max_owned, max_ghosts, layout.ghost_ratio(),
+      per(cells_computed, static_cast<std::size_t>(disc.mesh.num_cells())),
+      per(pairs_computed, bonds_graph.num_pairs()));
   return out;
 }
 
