@@ -34,12 +34,12 @@ if(MPIEXEC_EXECUTABLE)
   # residual; the error may be larger by the condition number, and a parallel
   # preconditioner takes other iterates), 1e-10 for the direct one (MUMPS
   # distributed against PETSc's serial Cholesky: round-off).
-  foreach(same "plate_tension:2:1e-7" "b2_plate_uniform_2d:2:1e-10" "b1_ghost_forces_1d:3:1e-7")
+  foreach(same "plate_tension:2:1e-7" "plate_tension:3:1e-7" "b2_plate_uniform_2d:2:1e-10" "b1_ghost_forces_1d:2:1e-7")
     string(REPLACE ":" ";" parts "${same}")
     list(GET parts 0 example)
     list(GET parts 1 ranks)
     list(GET parts 2 tolerance)
-    set(out ${CMAKE_CURRENT_BINARY_DIR}/cli_output/mpi_same_${example})
+    set(out ${CMAKE_CURRENT_BINARY_DIR}/cli_output/mpi_same_${example}_${ranks})
     add_test(NAME cli_mpi_same_answer_${example}_${ranks}_ranks
       COMMAND sh -c "set -e; rm -rf \"$4/serial\" \"$4/mpi\"; \"$1\" run \"$2\" -o \"$4/serial\" --quiet; \"$0\" -n $5 \"$1\" run \"$2\" -o \"$4/mpi\" --quiet; /usr/bin/python3 \"$3\" \"$4/serial\" \"$4/mpi\" $6"
               ${MPIEXEC_EXECUTABLE} $<TARGET_FILE:perimorph_cli> ${PROJECT_SOURCE_DIR}/examples/${example}/case.toml
