@@ -25,6 +25,7 @@
 #include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <optional>
 #include <string>
@@ -83,6 +84,28 @@ Arguments split_arguments(int argc, char** argv) {
     out.program.emplace_back(w);
   }
   return out;
+}
+
+/// The rank mpirun gave this process (from its environment; 0 when started
+/// alone): the messages of main are printed after PETSc, and MPI with it, has
+/// ended.
+int launcher_rank() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
+    if (const char* value = std::getenv(name)) return std::atoi(value);
+  return 0;
+}
+
+/// Prints an error of a command. Under mpirun, every process of a distributed
+/// run computes the same figures and meets the same input, solver and stop
+/// errors: process 0 alone prints those (`everywhere` false); others (an
+/// output error of process 0, which alone writes) are printed by the process
+/// that met them, named.
+void report(const char* prefix, const char* what, bool everywhere) {
+  const int rank = launcher_rank();
+  if (rank == 0)
+    fmt::print(stderr, "{}{}\n", prefix, what);
+  else if (everywhere)
+    fmt::print(stderr, "process {}: {}{}\n", rank, prefix, what);
 }
 
 }  // namespace
@@ -214,19 +237,19 @@ int main(int argc, char** argv) {
   } catch (const perimorph::app::OneProcessOnly&) {  // printed where it was found
     return 2;
   } catch (const perimorph::Interrupted& e) {
-    fmt::print(stderr, "stopped: {}\n", e.what());
+    report("stopped: ", e.what(), false);
     return 128 + e.signal;
   } catch (const perimorph::InputError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    report("error: ", e.what(), false);
     return 2;
   } catch (const perimorph::OutputError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    report("error: ", e.what(), true);
     return 5;
   } catch (const perimorph::SolverError& e) {
-    fmt::print(stderr, "solver error: {}\n", e.what());
+    report("solver error: ", e.what(), false);
     return 3;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    report("error: ", e.what(), true);
     return 4;
   }
 }

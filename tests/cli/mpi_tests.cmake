@@ -28,6 +28,18 @@ if(MPIEXEC_EXECUTABLE)
     FAIL_REGULAR_EXPRESSION "runs on one MPI process.*runs on one MPI process;PETSC ERROR"
     TIMEOUT 120)
 
+  # An input error met by every process is printed once (by process 0).
+  add_test(NAME cli_mpi_input_error_printed_once
+    COMMAND sh -c "\"$0\" -n 2 \"$1\" run \"$2\" -o \"$3\"; echo \"exit status $?\""
+            ${MPIEXEC_EXECUTABLE} $<TARGET_FILE:perimorph_cli>
+            ${CMAKE_CURRENT_SOURCE_DIR}/data/bad_cases/material_misspelt_key.toml
+            ${CMAKE_CURRENT_BINARY_DIR}/cli_output/mpi_bad_case)
+  set_tests_properties(cli_mpi_input_error_printed_once PROPERTIES
+    ENVIRONMENT "${PM_MPI_ENV}"
+    PASS_REGULAR_EXPRESSION "error: [^\n]*material_misspelt_key.toml.*exit status 2"
+    FAIL_REGULAR_EXPRESSION "material_misspelt_key.toml.*error: .*material_misspelt_key.toml;process 1"
+    TIMEOUT 120)
+
   # Same answers (issue 17, item 4): an elastic run on 1 process and on several
   # writes the same files, the CSV and VTU values within a tolerance
   # (compare_distributed.py): 1e-7 for the Krylov solves (rtol 1e-10 bounds the

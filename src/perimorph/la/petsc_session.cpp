@@ -125,6 +125,13 @@ void barrier() {
   MPI_Barrier(PETSC_COMM_WORLD);
 }
 
+int max_over_processes(int value) {
+  if (world_size() == 1) return value;
+  int out = value;
+  MPI_Allreduce(&value, &out, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+  return out;
+}
+
 void set_option(const std::string& name, const std::string& value) {
   if (name.size() < 2 || name[0] != '-')
     throw InputError(fmt::format("PETSc option names must start with '-': got '{}'", name));

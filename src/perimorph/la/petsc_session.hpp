@@ -36,6 +36,9 @@ int world_size();
 int world_rank();
 /// Waits until every rank of PETSC_COMM_WORLD has reached it.
 void barrier();
+/// The largest of `value` over the ranks of PETSC_COMM_WORLD (collective;
+/// `value` itself on one rank).
+int max_over_processes(int value);
 
 /// Sets one option ("-ksp_type", "preonly"), replacing any value it had, the
 /// command line's included; an empty value sets a flag. For programs that

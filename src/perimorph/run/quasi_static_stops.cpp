@@ -7,6 +7,7 @@
 #include "perimorph/core/error.hpp"
 #include "perimorph/core/interrupt.hpp"
 #include "perimorph/io/progress.hpp"
+#include "perimorph/la/petsc_session.hpp"
 #include "perimorph/run/quasi_static_run.hpp"
 
 #include <fmt/format.h>
@@ -61,7 +62,9 @@ void QuasiStaticRun::stop_unsettled(std::size_t over) {
 }
 
 void QuasiStaticRun::stop_if_asked() {
-  const int signal = stop_requested();
+  // Every process of a distributed run stops before the same solve: a signal
+  // seen by one of them (mpirun passes it to all, each in its own time) stops all.
+  const int signal = la::max_over_processes(stop_requested());
   if (signal == 0) return;
   progress_->finish();
   const int i = state_.increment;
