@@ -229,7 +229,7 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
     for (const auto& ph : progress.phases())
       phases.push_back(fmt::format("{} {:.2f} s", ph.name, ph.seconds));
     fmt::print(
-        "set-up{}: {}\n",
+        "phases{}: {}\n",
         perimorph::la::world_size() > 1 ? fmt::format(" (process 0 of {})", perimorph::la::world_size()) : "",
         fmt::join(phases, ", "));
     fmt::print("wrote {}{}\n", summary.csv_path, summary.pvd_path.empty() ? "" : " and " + summary.pvd_path);

@@ -6,7 +6,7 @@ configurations — 1 process × 1 thread, 1 process × 2 threads, 2 processes (m
 each, in turn (A B C A B C ...: a drifting machine moves all three alike), and records per run the wall time,
 the CPU time (user + system of the whole process tree) and the load average before the run; with -log_view it
 also records PETSc's time in the solve (KSPSolve) and in the preconditioner's set-up (PCSetUp), the largest
-over the processes, and the program's set-up phases (its "set-up:" line, process 0's): the assembly, and
+over the processes, and the program's set-up phases (its "phases:" line, process 0's): the assembly, and
 the rest of the set-up (PETSc's start, the model: mesh, points, bond graph, morphed stiffness; every process
 builds all of it). Medians go in the table.
 
@@ -59,7 +59,7 @@ def run_once(exe, case, ranks, threads, extra):
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     log = p.stdout + p.stderr
     phases = dict((name, float(sec)) for name, sec in
-                  re.findall(r"([a-zA-Z][\w -]*?) ([\d.]+) s", re.search(r"^set-up[^:]*: (.*)$", log, re.M).group(1)))
+                  re.findall(r"([a-zA-Z][\w -]*?) ([\d.]+) s", re.search(r"^phases[^:]*: (.*)$", log, re.M).group(1)))
     return {"wall_s": wall, "cpu_s": cpu, "load": load, "ksp_solve_s": petsc_event(log, "KSPSolve"),
             "pc_setup_s": petsc_event(log, "PCSetUp"), "assembly_s": phases.get("assembly", 0.0),
             "setup_s": sum(phases.values()) - phases.get("assembly", 0.0)}
