@@ -23,12 +23,9 @@
 namespace perimorph {
 namespace {
 
-/// A 2D hybrid plate: CG outside the purely non-local disc, DG inside it.
+/// testing::mixed_cg_dg_plate, held at x = 0 and pulled at x = 12.
 casefile::CaseConfig mixed_plate() {
-  auto c = testing::box_case(2, {12, 8, 1}, Vec3(12.0, 8.0, 0.0), 100.0, 0.25);
-  testing::add_nonlocal(c, casefile::KernelKind::constant, 1.2, 0.0, 2,
-                        casefile::Discretization::discontinuous);
-  c.alpha.regions = {testing::alpha_ball(Vec3(6.0, 4.0, 0.0), 3.5, 1.0)};
+  auto c = testing::mixed_cg_dg_plate();
   c.dirichlet = {testing::fixed("xmin", 0), testing::fixed("xmin", 1), testing::fixed("xmax", 0, 0.05)};
   return c;
 }

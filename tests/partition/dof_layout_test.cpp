@@ -21,13 +21,8 @@
 namespace perimorph {
 namespace {
 
-/// A 2D hybrid plate, CG outside the non-local zone and DG inside it.
 setup::Discretization mixed_plate() {
-  auto c = testing::box_case(2, {12, 8, 1}, Vec3(12.0, 8.0, 0.0), 100.0, 0.25);
-  testing::add_nonlocal(c, casefile::KernelKind::constant, 1.2, 0.0, 2,
-                        casefile::Discretization::discontinuous);
-  c.alpha.regions = {testing::alpha_ball(Vec3(6.0, 4.0, 0.0), 3.5, 1.0)};
-  return setup::build_discretization(c);
+  return setup::build_discretization(testing::mixed_cg_dg_plate());
 }
 
 TEST(DofLayout, OnePartIsTheSerialNumbering) {

@@ -54,4 +54,14 @@ inline casefile::AlphaRegionSpec alpha_ball(Vec3 centre, double radius, double t
   return r;
 }
 
+/// A 2D hybrid plate (12 × 8 cells, constant kernel, δ = 1.2) with α ≡ 1 on a
+/// disc of radius 3.5: DG where purely non-local, CG outside, so a partition of
+/// it cuts both kinds of nodes. No loads or constraints.
+inline casefile::CaseConfig mixed_cg_dg_plate() {
+  auto c = box_case(2, {12, 8, 1}, Vec3(12.0, 8.0, 0.0), 100.0, 0.25);
+  add_nonlocal(c, casefile::KernelKind::constant, 1.2, 0.0, 2, casefile::Discretization::discontinuous);
+  c.alpha.regions = {alpha_ball(Vec3(6.0, 4.0, 0.0), 3.5, 1.0)};
+  return c;
+}
+
 }  // namespace perimorph::testing

@@ -25,34 +25,6 @@ bool is_seqaij(Mat m) {
 
 Matrix::Matrix(PetscMatHandle m) : m_(m), direct_(is_seqaij(m)) {}
 
-bool Matrix::acquire_view() {
-  if (view_held_) return true;
-  if (!direct_) return false;
-  PetscInt n = 0;
-  const PetscInt *ia = nullptr, *ja = nullptr;
-  PetscBool done = PETSC_FALSE;
-  PM_PETSC(MatGetRowIJ(m_, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
-  if (!done) return false;
-  PetscScalar* v = nullptr;
-  PM_PETSC(MatSeqAIJGetArray(m_, &v));
-  view_ = {ia, ja, v, n};
-  view_held_ = true;
-  return true;
-}
-
-void Matrix::release_view() const {
-  release_distributed_view();
-  if (!view_held_) return;
-  PetscScalar* v = view_.values;
-  PM_PETSC(MatSeqAIJRestoreArray(m_, &v));
-  PetscInt n = view_.n;
-  const PetscInt *ia = view_.ia, *ja = view_.ja;
-  PetscBool done = PETSC_FALSE;
-  PM_PETSC(MatRestoreRowIJ(m_, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
-  view_ = {};
-  view_held_ = false;
-}
-
 Matrix::Matrix(const assembly::SparsityPattern& pattern) {
   const Index bs = pattern.block_size;
   const Index nb = pattern.num_block_rows();

@@ -122,6 +122,10 @@ class Matrix final : public assembly::MatrixInserter {
     double* values = nullptr;
     Index n = 0;
   };
+  /// Borrows a SeqAIJ matrix's CSR arrays into `view` (false, nothing
+  /// borrowed, if PETSc cannot give them); return_csr gives them back.
+  static bool borrow_csr(PetscMatHandle a, CsrView& view);
+  static void return_csr(PetscMatHandle a, const CsrView& view);
   bool acquire_view();
   void release_view() const;
   /// Distributed (matrix_distributed.cpp): add() writes the owned rows into

@@ -74,24 +74,9 @@ bool Matrix::acquire_distributed_view() {
     for (Index k = 0; k < bs; ++k)
       v->to_dof[static_cast<std::size_t>(n * bs + k)] =
           dist.to_distributed[static_cast<std::size_t>(n)] * bs + k;
-  const auto borrow = [](Mat a, CsrView& view) {
-    PetscInt n = 0;
-    const PetscInt *ia = nullptr, *ja = nullptr;
-    PetscBool done = PETSC_FALSE;
-    PM_PETSC(MatGetRowIJ(a, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
-    if (!done) return false;
-    PetscScalar* values = nullptr;
-    PM_PETSC(MatSeqAIJGetArray(a, &values));
-    view = {ia, ja, values, n};
-    return true;
-  };
-  if (!borrow(v->diag, v->d)) return false;
-  if (!borrow(v->off, v->o)) {
-    PetscScalar* values = v->d.values;
-    PM_PETSC(MatSeqAIJRestoreArray(v->diag, &values));
-    PetscInt n = v->d.n;
-    PetscBool done = PETSC_FALSE;
-    PM_PETSC(MatRestoreRowIJ(v->diag, 0, PETSC_FALSE, PETSC_FALSE, &n, &v->d.ia, &v->d.ja, &done));
+  if (!borrow_csr(v->diag, v->d)) return false;
+  if (!borrow_csr(v->off, v->o)) {
+    return_csr(v->diag, v->d);
     return false;
   }
   dview_ = std::move(v);
@@ -143,14 +128,8 @@ void Matrix::add_distributed(std::span<const Index> rows, std::span<const Index>
 void Matrix::release_distributed_view() const {
   if (!dview_) return;
   const std::unique_ptr<DistributedView> v = std::move(dview_);
-  for (auto [a, view] : {std::pair{v->diag, &v->d}, std::pair{v->off, &v->o}}) {
-    PetscScalar* values = view->values;
-    PM_PETSC(MatSeqAIJRestoreArray(a, &values));
-    PetscInt n = view->n;
-    const PetscInt *ia = view->ia, *ja = view->ja;
-    PetscBool done = PETSC_FALSE;
-    PM_PETSC(MatRestoreRowIJ(a, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
-  }
+  return_csr(v->diag, v->d);
+  return_csr(v->off, v->o);
 }
 
 Eigen::MatrixXd Matrix::distributed_to_dense() const {
