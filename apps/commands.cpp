@@ -81,13 +81,11 @@ void require_distributable(const perimorph::casefile::CaseConfig& config, const 
   const int size = perimorph::la::world_size();
   if (size == 1) return;
   std::vector<std::string> missing;
-  if (config.fracture.enabled) missing.emplace_back("[fracture]");
   for (const auto& m : config.materials)
     if (m.damage.enabled) {
       missing.emplace_back("[material.damage]");
       break;
     }
-  if (config.adaptivity.enabled) missing.emplace_back("[adaptivity]");
   if (config.solver.op == perimorph::casefile::SolverOperator::matrix_free)
     missing.emplace_back("[solver] operator = \"matrix-free\"");
   if (!restart.empty()) missing.emplace_back("--restart");
@@ -98,7 +96,8 @@ void require_distributable(const perimorph::casefile::CaseConfig& config, const 
     fmt::print(
         stderr,
         "error: {}: this run was started on {} MPI processes (mpirun -n {}), but {} {} not distributed "
-        "yet; only elastic runs (local, non-local or hybrid, with an assembled stiffness) are. Start "
+        "yet; only runs with an assembled stiffness (elastic, with bond failure, with adaptive alpha) are. "
+        "Start "
         "it without mpirun, and set OMP_NUM_THREADS for the threads of its assembly and bond loops\n",
         config.path, size, size, fmt::join(missing, ", "), missing.size() == 1 ? "is" : "are");
     std::fflush(stderr);

@@ -3,7 +3,8 @@
 // rebuilt and the solve retried (reported); one under which the iterations
 // grew beyond 2 n + 10 is rebuilt before the next solve; without reuse
 // nothing is retried; a solve that fails also with the rebuilt
-// preconditioner throws and says so. The direct fallback (allowed after bond
+// preconditioner throws and says so; a direct solve (preonly) with a factor
+// of an earlier matrix is redone with a new one. The direct fallback (allowed after bond
 // failures) solves a singular, consistent system by holding its null pivot,
 // and every later solve is direct; with an inconsistent right-hand side (a
 // load that does work on the mechanism) it throws; not allowed, it is not used.
@@ -135,6 +136,29 @@ TEST(LaLinearSolverReuseFactor, AKeptCholeskyFactorSolvesARankOneChangeInTwoIter
   EXPECT_FALSE(changed.rebuilt_preconditioner);
   EXPECT_LE(changed.iterations, 2);
   EXPECT_LE(changed.relative_residual, 1e-10);
+}
+
+TEST_F(LaLinearSolverReuse, ADirectSolveWithAnOldFactorIsRedoneWithANewOne) {
+  // preonly has no iterations to make up for a factor of an earlier matrix:
+  // kept, it would return that matrix's solution (relative residual 0.9 here).
+  la::set_option("-ksp_type", "preonly");
+  la::set_option("-pc_type", "lu");
+  la::set_option("-ksp_reuse_preconditioner");
+  la::LinearSolver solver(1e-10, 1);
+  la::Matrix A(diagonal_pattern());
+  la::Vector b(n, 1), x(n, 1);
+  b.set_all(1.0);
+  set_diagonal(A, {1, 1, 1, 1});
+  solver.set_operator(A, nodes, 1);
+  EXPECT_FALSE(solver.solve(b, x).rebuilt_preconditioner);
+  set_diagonal(A, {1, 10, 100, 1000});
+  solver.set_operator(A, nodes, 1);
+  const la::SolveReport rep = solver.solve(b, x);
+  EXPECT_TRUE(rep.rebuilt_preconditioner);
+  EXPECT_LT(rep.relative_residual, 1e-14);
+  EXPECT_NEAR(x.to_std()[3], 1e-3, 1e-18);
+  // The same matrix again: the new factor is kept.
+  EXPECT_FALSE(solver.solve(b, x).rebuilt_preconditioner);
 }
 
 TEST(LaLinearSolverReuseGrowth,

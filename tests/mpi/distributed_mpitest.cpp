@@ -6,8 +6,10 @@
 // matrix bit for bit, and the displacement of a Dirichlet-driven solve within
 // the solver's tolerance.
 
+#include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/assembly/local_assembly.hpp"
 #include "perimorph/assembly/nonlocal_assembly.hpp"
+#include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/la/linear_solver.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/partition/dof_layout.hpp"
@@ -128,6 +130,86 @@ TEST(DistributedVector, ReplicatedRoundTrip) {
   for (double x : values) sum2 += x * x;
   EXPECT_NEAR(v.norm2(), std::sqrt(sum2), 1e-12 * std::sqrt(sum2));
   EXPECT_TRUE(v.all_finite());
+}
+
+TEST(DistributedVector, AddAtAndSetAtChangeTheEntriesNamedInTheAssemblyNumbering) {
+  const auto m = setup::build_discretization(mixed_plate());
+  const auto d = distribute(m);
+  const Index n = m.dofmap.num_dofs();
+  std::vector<double> expected(static_cast<std::size_t>(n), 0.0);
+  la::Vector v(d, m.dim());
+  const std::vector<Index> at{0, 7, n - 1, 7, n / 2};
+  const std::vector<double> add{1.0, 2.0, 3.0, 4.0, 5.0};
+  v.add_at(at, add);
+  for (std::size_t k = 0; k < at.size(); ++k) expected[static_cast<std::size_t>(at[k])] += add[k];
+  const std::vector<Index> set{n / 2, 3};
+  v.set_at(set, -1.0);
+  for (Index i : set) expected[static_cast<std::size_t>(i)] = -1.0;
+  EXPECT_EQ(v.to_replicated(), expected);
+}
+
+TEST_P(Distributed2D3D, DiagonalAndBlocksAreTheSerialOnesOnEveryProcess) {
+  const auto m = setup::build_discretization(config());
+  const auto K = system::assemble_stiffness(m, distribute(m));
+  const Eigen::MatrixXd serial = serial_stiffness(m);
+  const Index n = m.dofmap.num_dofs();
+  // Rows spread over every part, repeated, in no order.
+  const std::vector<Index> rows{n - 1, 0, n / 2, 1, n / 3, 0};
+  const std::vector<double> diag = K.K.diagonal_at(rows);
+  for (std::size_t k = 0; k < rows.size(); ++k) EXPECT_EQ(diag[k], serial(rows[k], rows[k]));
+  // The blocks of a few cells (as cell_mechanisms takes them), one gathering.
+  std::vector<std::vector<Index>> sets;
+  for (Index c : {Index{0}, m.mesh.num_cells() / 2, m.mesh.num_cells() - 1}) {
+    auto& dofs = sets.emplace_back();
+    for (Index node : m.dofmap.cell_nodes(c))
+      for (int k = 0; k < m.dim(); ++k) dofs.push_back(node * m.dim() + k);
+  }
+  const std::vector<Eigen::MatrixXd> blocks = K.K.blocks(sets);
+  ASSERT_EQ(blocks.size(), sets.size());
+  for (std::size_t s = 0; s < sets.size(); ++s)
+    for (std::size_t i = 0; i < sets[s].size(); ++i)
+      for (std::size_t j = 0; j < sets[s].size(); ++j)
+        EXPECT_EQ(blocks[s](static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)),
+                  serial(sets[s][i], sets[s][j]));
+  EXPECT_TRUE((K.K.block(sets[1]).array() == blocks[1].array()).all());
+}
+
+TEST_P(Distributed2D3D, BondsOverAThresholdAreDecidedOnceAndGatheredInTheSerialOrder) {
+  casefile::CaseConfig c = config();
+  c.fracture.enabled = true;
+  c.fracture.s_crit = 1e-3;
+  const auto m = setup::build_discretization(c);
+  // A displacement with stretches of every size: u = x² along x (and a shear).
+  std::vector<double> u(static_cast<std::size_t>(m.dofmap.num_dofs()), 0.0);
+  for (Index node = 0; node < m.dofmap.num_nodes(); ++node) {
+    const Vec3 x = m.dofmap.node_coordinate(node);
+    u[static_cast<std::size_t>(node * m.dim())] = 1e-3 * x.x() * x.x();
+    u[static_cast<std::size_t>(node * m.dim() + 1)] = 1e-4 * x.x() * x.y();
+  }
+  const auto space = m.nonlocal_space();
+  const double threshold = c.fracture.s_crit;
+  const auto serial = assembly::bonds_over(space, u, threshold);
+  ASSERT_GT(serial.size(), 10u);
+  const auto p = partition::coordinate_bisection(m.mesh, la::world_size());
+  std::vector<char> mine(p.owner.size());
+  for (std::size_t c = 0; c < mine.size(); ++c) mine[c] = p.owner[c] == la::world_rank() ? 1 : 0;
+  const auto decided = assembly::bonds_over(space, u, threshold, mine);
+  // Every bond is decided by exactly one process.
+  double total = 0.0;
+  for (double n : la::all_gather({static_cast<double>(decided.size())})) total += n;
+  EXPECT_EQ(total, static_cast<double>(serial.size()));
+  // BondFailure's selection decides its part and gathers: the serial list, in
+  // its order, on every process.
+  evolution::RunState state(m);
+  state.u = u;
+  const auto selected = evolution::BondFailure(m).select(state);
+  ASSERT_EQ(selected.size(), serial.size());
+  for (std::size_t k = 0; k < serial.size(); ++k) {
+    const auto &a = selected[k].id, &b = serial[k].id;
+    EXPECT_TRUE(a.e == b.e && a.f == b.f && a.g == b.g && a.h == b.h) << "bond " << k;
+    EXPECT_EQ(selected[k].stretch, serial[k].stretch);
+    EXPECT_EQ(selected[k].k, serial[k].k);
+  }
 }
 
 }  // namespace

@@ -112,13 +112,14 @@ std::vector<std::array<Index, 2>> bonded_pairs_dim(const NonlocalSpace& s) {
 }
 
 template <int D>
-std::vector<StretchedBond> bonds_over_dim(const NonlocalSpace& s, std::span<const double> u,
-                                          double threshold) {
+std::vector<StretchedBond> bonds_over_dim(const NonlocalSpace& s, std::span<const double> u, double threshold,
+                                          std::span<const char> cells) {
   const std::vector<Vec3> up = point_displacements(s, u);
   const Index ncells = s.mesh.num_cells();
   std::vector<std::vector<StretchedBond>> per_cell(static_cast<std::size_t>(ncells));
 #pragma omp parallel for schedule(dynamic, 8)
   for (Index e = 0; e < ncells; ++e) {
+    if (!cells.empty() && cells[static_cast<std::size_t>(e)] == 0) continue;
     auto& out = per_cell[static_cast<std::size_t>(e)];
     // The stretch needs only the geometry: the micromodulus is computed for the bonds over the threshold.
     auto over = [&](Index f, int g, int h, const Vec3& xi, double r2) {
@@ -262,9 +263,12 @@ std::vector<Vec3> point_displacements(const NonlocalSpace& s, std::span<const do
   return out;
 }
 
-std::vector<StretchedBond> bonds_over(const NonlocalSpace& space, std::span<const double> u,
-                                      double threshold) {
-  return dispatch_dim(space.mesh.dim(), [&](auto D) { return bonds_over_dim<D()>(space, u, threshold); });
+std::vector<StretchedBond> bonds_over(const NonlocalSpace& space, std::span<const double> u, double threshold,
+                                      std::span<const char> cells) {
+  PERIMORPH_ASSERT(cells.empty() || cells.size() == static_cast<std::size_t>(space.mesh.num_cells()),
+                   "bonds_over: one flag per cell");
+  return dispatch_dim(space.mesh.dim(),
+                      [&](auto D) { return bonds_over_dim<D()>(space, u, threshold, cells); });
 }
 
 BondWeights point_bond_weights(const NonlocalSpace& space) {

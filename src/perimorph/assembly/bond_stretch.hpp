@@ -34,8 +34,10 @@ inline double energy_at_stretch(const StretchedBond& b, double s) {
 std::vector<Vec3> point_displacements(const NonlocalSpace& space, std::span<const double> u);
 
 /// Every intact bond with s > threshold (tension only), with its energy.
-std::vector<StretchedBond> bonds_over(const NonlocalSpace& space, std::span<const double> u,
-                                      double threshold);
+/// With `cells` (one flag per cell), only the bonds {e, f} (e ≤ f) whose cell
+/// e is flagged: each bond is looked at from one flagged set of a partition.
+std::vector<StretchedBond> bonds_over(const NonlocalSpace& space, std::span<const double> u, double threshold,
+                                      std::span<const char> cells = {});
 
 /// Per non-local point: Σ over its bonds of W ᾱ c_bond |ξ|² (total) and the
 /// part carried by failed bonds (lost). Damage index = lost / total (0 where

@@ -4,6 +4,8 @@
 #include "perimorph/core/dim_dispatch.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/dofs/dof_map.hpp"
+#include "perimorph/la/petsc_session.hpp"
+#include "perimorph/partition/partition.hpp"
 #include "perimorph/peridynamics/pair_kernel.hpp"
 #include "perimorph/setup/critical_stretch.hpp"
 
@@ -22,7 +24,45 @@ BondFailure::BondFailure(const setup::Discretization& disc)
   if (!regions.empty()) no_fail_.assign(static_cast<std::size_t>(disc.mesh.num_cells()), 0);
   for (const std::string& region : regions)
     for (Index c : disc.mesh.cell_sets.at(region)) no_fail_[static_cast<std::size_t>(c)] = 1;
+  const int processes = la::world_size();
+  if (processes > 1) {
+    const partition::Partition p = partition::coordinate_bisection(disc.mesh, processes);
+    const int rank = la::world_rank();
+    decides_.resize(p.owner.size());
+    for (std::size_t c = 0; c < p.owner.size(); ++c) decides_[c] = p.owner[c] == rank ? 1 : 0;
+  }
 }
+
+namespace {
+
+constexpr std::size_t kPacked = 10;  ///< doubles per bond in gather_bonds
+
+/// Every process's bonds (each in cell order e, from disjoint sets of cells e)
+/// on every process, in cell order: the one-process order.
+std::vector<assembly::StretchedBond> gather_bonds(const std::vector<assembly::StretchedBond>& mine) {
+  std::vector<double> packed;
+  packed.reserve(mine.size() * kPacked);
+  for (const auto& b : mine)
+    packed.insert(packed.end(),
+                  {static_cast<double>(b.id.e), static_cast<double>(b.id.f), static_cast<double>(b.id.g),
+                   static_cast<double>(b.id.h), b.stretch, b.energy, b.k, b.xi.x(), b.xi.y(), b.xi.z()});
+  const std::vector<double> all = la::all_gather(packed);
+  std::vector<assembly::StretchedBond> out(all.size() / kPacked);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const double* v = all.data() + i * kPacked;
+    auto& b = out[i];
+    b.id = {static_cast<Index>(v[0]), static_cast<Index>(v[1]), static_cast<int>(v[2]),
+            static_cast<int>(v[3])};
+    b.stretch = v[4];
+    b.energy = v[5];
+    b.k = v[6];
+    b.xi = Vec3(v[7], v[8], v[9]);
+  }
+  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.id.e < b.id.e; });
+  return out;
+}
+
+}  // namespace
 
 assembly::NonlocalSpace BondFailure::space(const RunState& state) const {
   return disc_->nonlocal_space(&state.failed);
@@ -39,7 +79,7 @@ Effect BondFailure::apply(RunState& state, system::ConstrainedSystem& system) {
 }
 
 std::vector<assembly::StretchedBond> BondFailure::select(const RunState& state) const {
-  std::vector<assembly::StretchedBond> over = assembly::bonds_over(space(state), state.u, s_crit_);
+  std::vector<assembly::StretchedBond> over = assembly::bonds_over(space(state), state.u, s_crit_, decides_);
   const auto& spec = disc_->config.fracture;
   const setup::DamageModel* damage = disc_->damage ? &*disc_->damage : nullptr;
   std::erase_if(over, [&](const assembly::StretchedBond& b) {
@@ -51,6 +91,7 @@ std::vector<assembly::StretchedBond> BondFailure::select(const RunState& state) 
     return !no_fail_.empty() &&
            (no_fail_[static_cast<std::size_t>(b.id.e)] || no_fail_[static_cast<std::size_t>(b.id.f)]);
   });
+  if (!decides_.empty()) over = gather_bonds(over);
   if (spec.rule == casefile::BreakRule::fraction && !over.empty()) {
     double smax = 0.0;
     for (const auto& b : over) smax = std::max(smax, b.stretch);

@@ -75,7 +75,9 @@ class BondFailure final : public Component {
   /// largest such s; bonds with an end in a [fracture] no_fail region, and
   /// with intra_cell_failure = false bonds between two points of one cell,
   /// and with [material.damage] bonds with an end whose damage is below d_c
-  /// (THEORY §6), are never selected. Grouped by cell pair.
+  /// (THEORY §6), are never selected. Grouped by cell pair. On several
+  /// processes each decides the bonds of its cells and the decisions are
+  /// gathered: every process gets the same list, in the one-process order.
   std::vector<assembly::StretchedBond> select(const RunState& state) const;
 
   /// Breaks `bonds` (from select at the state's displacement): records them in
@@ -112,6 +114,10 @@ class BondFailure final : public Component {
   const setup::Discretization* disc_;  ///< non-owning: the run's current discretization
   double s_crit_ = 0.0;
   std::vector<char> no_fail_;  ///< per cell, 1 in a no_fail region; empty when there is none
+  /// On several processes, per cell, 1 where this process decides the cell's
+  /// bonds {e, f} (e ≤ f): the cells of its part (partition::coordinate_bisection,
+  /// as the assembly's). Empty on one process.
+  std::vector<char> decides_;
   std::vector<assembly::StretchedBond> proposed_;
   FailureEnergy applied_;
 };

@@ -24,18 +24,37 @@ CellMechanisms find_cell_mechanisms(const setup::Discretization& model, const la
   const auto& dm = model.dofmap;
   std::vector<Index> excluded(held.begin(), held.end());
   CellMechanisms out;
+  // The cells' whole blocks a chunk at a time (one gathering per chunk when A
+  // is spread over processes); each cell takes the rows and columns not excluded.
+  constexpr std::size_t chunk = 1024;
+  std::vector<std::vector<Index>> cell_dofs;
+  std::vector<Eigen::MatrixXd> cell_blocks;
   std::vector<Index> dofs;
-  for (Index c : cells) {
-    dofs.clear();
-    for (Index node : dm.cell_nodes(c))
-      for (int d = 0; d < dim; ++d) {
-        const Index dof = node * dim + d;
-        if (!std::binary_search(excluded.begin(), excluded.end(), dof)) dofs.push_back(dof);
+  std::vector<Eigen::Index> kept;
+  for (std::size_t ci = 0; ci < cells.size(); ++ci) {
+    if (ci % chunk == 0) {
+      cell_dofs.clear();
+      for (std::size_t k = ci; k < std::min(cells.size(), ci + chunk); ++k) {
+        auto& all = cell_dofs.emplace_back();
+        for (Index node : dm.cell_nodes(cells[k]))
+          for (int d = 0; d < dim; ++d) all.push_back(node * dim + d);
       }
+      cell_blocks = A.blocks(cell_dofs);
+    }
+    const Index c = cells[ci];
+    dofs.clear();
+    kept.clear();
+    const std::vector<Index>& all = cell_dofs[ci % chunk];
+    for (std::size_t a = 0; a < all.size(); ++a) {
+      const Index dof = all[a];
+      if (std::binary_search(excluded.begin(), excluded.end(), dof)) continue;
+      dofs.push_back(dof);
+      kept.push_back(static_cast<Eigen::Index>(a));
+    }
     if (dofs.empty()) continue;
     double scale = 0.0;
     for (Index d : dofs) scale = std::max(scale, std::abs(reference_diagonal[static_cast<std::size_t>(d)]));
-    const Eigen::MatrixXd block = A.block(dofs);
+    const Eigen::MatrixXd block = cell_blocks[ci % chunk](kept, kept);
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (block + block.transpose()));
     const Eigen::VectorXd& lambda = eig.eigenvalues();  // ascending
     Eigen::Index k = 0;

@@ -38,7 +38,8 @@ struct CellMechanisms {
 /// before any downdate, leaving out the dofs of `held` (sorted: prescribed, or
 /// about to be held; a pin chosen for one cell is left out of the next).
 /// `force`: the applied forces at load factor 1 (empty: none). Throws Error
-/// naming the cell when the forces do work on one of its free modes.
+/// naming the cell when the forces do work on one of its free modes. With A
+/// spread over processes: collective, the same arguments and result on each.
 CellMechanisms find_cell_mechanisms(const setup::Discretization& model, const la::Matrix& A,
                                     std::span<const double> reference_diagonal, std::span<const Index> cells,
                                     std::span<const Index> held, std::span<const double> force);

@@ -47,7 +47,9 @@ class LinearSolver {
   /// preconditioner is rebuilt for the present matrix before a solve when the
   /// last one needed more than 2 n + 10 iterations, n those of the first
   /// solve after the last build, and a solve that diverges is retried once
-  /// with it rebuilt (both reported in SolveReport). Throws SolverError on
+  /// with it rebuilt (both reported in SolveReport); a direct solve
+  /// (-ksp_type preonly) with a kept factor counts as diverged when its true
+  /// relative residual exceeds rtol (the factor is of an earlier matrix). Throws SolverError on
   /// divergence or a non-finite solution, naming PETSc's reason and the
   /// options to try.
   SolveReport solve(const Vector& b, Vector& x);

@@ -225,6 +225,12 @@ std::vector<double> Matrix::diagonal() const {
 
 std::vector<double> Matrix::diagonal_at(std::span<const Index> rows) const {
   release_view();
+  if (distribution_) {
+    std::vector<double> out;
+    const std::vector<Index> ones(rows.size(), 1);
+    for (const Eigen::MatrixXd& b : distributed_blocks(rows, ones)) out.push_back(b(0, 0));
+    return out;
+  }
   std::vector<double> out(rows.size());
   for (std::size_t k = 0; k < rows.size(); ++k) PM_PETSC(MatGetValues(m_, 1, &rows[k], 1, &rows[k], &out[k]));
   return out;
@@ -283,9 +289,28 @@ Matrix Matrix::without_zero_blocks() const {
 
 Eigen::MatrixXd Matrix::block(std::span<const Index> dofs) const {
   release_view();
+  if (distribution_) {
+    const Index size[1] = {static_cast<Index>(dofs.size())};
+    return distributed_blocks(dofs, size).front();
+  }
   const auto n = static_cast<PetscInt>(dofs.size());
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> out(n, n);
   if (n > 0) PM_PETSC(MatGetValues(m_, n, dofs.data(), n, dofs.data(), out.data()));
+  return out;
+}
+
+std::vector<Eigen::MatrixXd> Matrix::blocks(std::span<const std::vector<Index>> sets) const {
+  if (distribution_) {
+    std::vector<Index> dofs, sizes;
+    for (const auto& s : sets) {
+      dofs.insert(dofs.end(), s.begin(), s.end());
+      sizes.push_back(static_cast<Index>(s.size()));
+    }
+    return distributed_blocks(dofs, sizes);
+  }
+  std::vector<Eigen::MatrixXd> out;
+  out.reserve(sets.size());
+  for (const auto& s : sets) out.push_back(block(s));
   return out;
 }
 

@@ -70,11 +70,18 @@ class Matrix final : public assembly::MatrixInserter {
   /// The diagonal (MatGetDiagonal); distributed, the whole of it in the
   /// assembly's numbering on every process (collective).
   std::vector<double> diagonal() const;
-  /// The diagonal entries at the given rows (MatGetValues; a finalized matrix).
+  /// The diagonal entries at the given rows (MatGetValues; a finalized
+  /// matrix). Distributed: collective, the same rows on every process, the
+  /// values on every process.
   std::vector<double> diagonal_at(std::span<const Index> rows) const;
   /// The dense principal block A[dofs, dofs] (MatGetValues; a finalized
-  /// matrix; entries outside the pattern are 0).
+  /// matrix; entries outside the pattern are 0). Distributed: as blocks.
   Eigen::MatrixXd block(std::span<const Index> dofs) const;
+  /// The principal blocks A[s, s] of each set s of dofs, as block does.
+  /// Distributed: collective, the same sets on every process, each owner's
+  /// rows summed over the processes once (one reduction for all the blocks),
+  /// the blocks on every process bitwise as on one process.
+  std::vector<Eigen::MatrixXd> blocks(std::span<const std::vector<Index>> sets) const;
   Index rows() const;
   /// Number of stored non-zeros (allocated = used after finalize).
   double nonzeros() const;
@@ -138,6 +145,10 @@ class Matrix final : public assembly::MatrixInserter {
                        std::span<const double> values);
   void release_distributed_view() const;
   Eigen::MatrixXd distributed_to_dense() const;
+  /// The principal blocks over consecutive runs of `dofs` (run k: sizes[k]
+  /// dofs), gathered on every process (collective).
+  std::vector<Eigen::MatrixXd> distributed_blocks(std::span<const Index> dofs,
+                                                  std::span<const Index> sizes) const;
 
   PetscMatHandle m_ = nullptr;
   std::shared_ptr<const Distribution> distribution_;

@@ -160,4 +160,46 @@ Eigen::MatrixXd Matrix::distributed_to_dense() const {
   return A;
 }
 
+std::vector<Eigen::MatrixXd> Matrix::distributed_blocks(std::span<const Index> dofs,
+                                                        std::span<const Index> sizes) const {
+  release_view();
+  const Distribution& d = *distribution_;
+  PetscInt bs = 1;
+  PM_PETSC(MatGetBlockSize(m_, &bs));
+  auto global = [&](Index dof) {
+    return d.to_distributed[static_cast<std::size_t>(dof / bs)] * bs + dof % bs;
+  };
+  // Every block's owned rows, row-major, one after the other; zeros elsewhere.
+  std::size_t total = 0;
+  for (Index n : sizes) total += static_cast<std::size_t>(n * n);
+  std::vector<double> values(total, 0.0);
+  std::vector<PetscInt> cols;
+  std::size_t at = 0, first = 0;
+  for (Index n : sizes) {
+    const auto set = dofs.subspan(first, static_cast<std::size_t>(n));
+    cols.resize(set.size());
+    for (std::size_t j = 0; j < set.size(); ++j) cols[j] = global(set[j]);
+    for (Index i = 0; i < n; ++i) {
+      const Index dof = set[static_cast<std::size_t>(i)];
+      if (!d.owns(dof / bs)) continue;
+      const PetscInt row = global(dof);
+      PM_PETSC(MatGetValues(m_, 1, &row, static_cast<PetscInt>(n), cols.data(), values.data() + at + i * n));
+    }
+    at += static_cast<std::size_t>(n * n);
+    first += set.size();
+  }
+  // One owner per row: the sum is that owner's value, exactly.
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM,
+                PETSC_COMM_WORLD);
+  std::vector<Eigen::MatrixXd> out;
+  out.reserve(sizes.size());
+  at = 0;
+  for (Index n : sizes) {
+    out.push_back(Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+        values.data() + at, n, n));
+    at += static_cast<std::size_t>(n * n);
+  }
+  return out;
+}
+
 }  // namespace perimorph::la

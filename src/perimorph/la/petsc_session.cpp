@@ -121,6 +121,19 @@ int world_rank() {
   return rank;
 }
 
+std::vector<double> all_gather(const std::vector<double>& mine) {
+  const int size = world_size();
+  if (size == 1) return mine;
+  const int count = static_cast<int>(mine.size());
+  std::vector<int> counts(static_cast<std::size_t>(size)), offsets(static_cast<std::size_t>(size) + 1, 0);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, PETSC_COMM_WORLD);
+  for (std::size_t r = 0; r < counts.size(); ++r) offsets[r + 1] = offsets[r] + counts[r];
+  std::vector<double> all(static_cast<std::size_t>(offsets.back()));
+  MPI_Allgatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE,
+                 PETSC_COMM_WORLD);
+  return all;
+}
+
 void barrier() {
   MPI_Barrier(PETSC_COMM_WORLD);
 }

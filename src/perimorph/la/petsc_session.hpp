@@ -30,6 +30,10 @@ void add_options(const std::string& options);
 /// is left out: PETSc reads it at PetscFinalize and reports on its own.
 std::vector<std::string> unused_options();
 
+/// Every process's `mine`, one after the other in rank order, on every
+/// process (collective; `mine` itself on one rank).
+std::vector<double> all_gather(const std::vector<double>& mine);
+
 /// Number of MPI ranks in PETSC_COMM_WORLD.
 int world_size();
 /// This process's rank in PETSC_COMM_WORLD.

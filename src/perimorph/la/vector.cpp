@@ -70,18 +70,35 @@ void Vector::add(std::span<const double> values) {
   PM_PETSC(VecRestoreArray(v_, &a));
 }
 
+Index Vector::local_index(Index i, Index bs) const {
+  if (!distribution_) return i;
+  const Distribution& d = *distribution_;
+  const Index node = d.to_distributed[static_cast<std::size_t>(i / bs)];
+  return node >= d.begin && node < d.end ? (node - d.begin) * bs + i % bs : -1;
+}
+
 void Vector::add_at(std::span<const Index> indices, std::span<const double> values) {
   PERIMORPH_ASSERT(indices.size() == values.size(), "add_at: sizes differ");
+  PetscInt bs = 1;
+  PM_PETSC(VecGetBlockSize(v_, &bs));
   PetscScalar* a = nullptr;
   PM_PETSC(VecGetArray(v_, &a));
-  for (std::size_t k = 0; k < indices.size(); ++k) a[indices[k]] += values[k];
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    const Index at = local_index(indices[k], bs);
+    if (at >= 0) a[at] += values[k];
+  }
   PM_PETSC(VecRestoreArray(v_, &a));
 }
 
 void Vector::set_at(std::span<const Index> indices, double value) {
+  PetscInt bs = 1;
+  PM_PETSC(VecGetBlockSize(v_, &bs));
   PetscScalar* a = nullptr;
   PM_PETSC(VecGetArray(v_, &a));
-  for (Index i : indices) a[i] = value;
+  for (Index i : indices) {
+    const Index at = local_index(i, bs);
+    if (at >= 0) a[at] = value;
+  }
   PM_PETSC(VecRestoreArray(v_, &a));
 }
 

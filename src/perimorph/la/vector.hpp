@@ -34,9 +34,11 @@ class Vector {
   void assign(std::span<const double> values);
   /// Adds `values` entry-wise (size() entries).
   void add(std::span<const double> values);
-  /// this[indices[k]] += values[k] (local indices; repeated indices add up).
+  /// this[indices[k]] += values[k] (repeated indices add up). Indices in the
+  /// assembly's numbering; distributed, each process changes the entries it
+  /// owns and skips the others (call it with the same arguments on every process).
   void add_at(std::span<const Index> indices, std::span<const double> values);
-  /// this[indices[k]] = value.
+  /// this[indices[k]] = value (as add_at).
   void set_at(std::span<const Index> indices, double value);
   std::vector<double> to_std() const;
   /// Sets the owned entries from `values`, the whole vector in the assembly's
@@ -64,6 +66,9 @@ class Vector {
  private:
   PetscVecHandle v_ = nullptr;
   std::shared_ptr<const Distribution> distribution_;
+  /// Where entry i (assembly numbering) is in this process's array; −1 if
+  /// another process owns it. bs: the block size.
+  Index local_index(Index i, Index bs) const;
 };
 
 }  // namespace perimorph::la

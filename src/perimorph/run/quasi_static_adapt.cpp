@@ -17,7 +17,7 @@ namespace {
 /// ½ uᵀ K u.
 double strain_energy(const system::ConstrainedSystem& system, const la::Vector& u, la::Vector& Ku) {
   system.apply_K(u, Ku);
-  const std::vector<double> a = u.to_std(), b = Ku.to_std();
+  const std::vector<double> a = u.to_replicated(), b = Ku.to_replicated();
   double e = 0.0;
   for (std::size_t k = 0; k < a.size(); ++k) e += 0.5 * a[k] * b[k];
   return e;
@@ -56,10 +56,10 @@ void QuasiStaticRun::adapt_for_next() {
   if (!grow_alpha()) return;
   // The next increment's elastic step starts from the last state on the new model.
   u_prev_ = state_.u;
-  la::Vector Ku(disc_->dofmap.num_dofs(), disc_->dim());
-  u_.assign(u_prev_);
+  la::Vector Ku = system_->make_vector();
+  u_.assign_replicated(u_prev_);
   system_->apply_K(u_, Ku);
-  fint_prev_ = Ku.to_std();
+  fint_prev_ = Ku.to_replicated();
 }
 
 void QuasiStaticRun::rebuild() {
@@ -80,9 +80,9 @@ void QuasiStaticRun::rebuild() {
   setup_.sets = setup::reaction_sets(*next);
   disc_ = next.get();
   owned_ = std::move(next);  // the previous discretization (and its system) are gone now
-  u_ = la::Vector(n, disc_->dim());
-  internal_ = la::Vector(n, disc_->dim());
-  u_.assign(state_.u);
+  u_ = system_->make_vector();
+  internal_ = system_->make_vector();
+  u_.assign_replicated(state_.u);
   state_.energy.model_change += strain_energy(*system_, u_, internal_) - before_energy;
   for (auto& component : setup_.components) {
     try {

@@ -149,10 +149,16 @@ Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& befor
 
   // Subtracting and adding the changed cells' bonds costs about their pairs
   // in both models; when that exceeds assembling the new model, assemble it.
-  out.partial = assembled_pairs(before, in) + assembled_pairs(after, in) <= assembled_pairs(after, {});
+  // Spread over processes, the dofs a process owns change with the model
+  // (partition/dof_layout.hpp): the old rows it holds are not those it needs,
+  // and the new model is assembled (the same as the update to round-off).
+  const bool distributed = system.K().distribution() != nullptr;
+  out.partial =
+      !distributed && assembled_pairs(before, in) + assembled_pairs(after, in) <= assembled_pairs(after, {});
   if (!out.partial) {
     auto t0 = clock::now();
-    la::Matrix K = system::assemble_stiffness(after, failed, damage).K;
+    la::Matrix K = distributed ? system::assemble_stiffness_over_processes(after, failed, damage).K
+                               : system::assemble_stiffness(after, failed, damage).K;
     out.times.add = since(t0);
     t0 = clock::now();
     std::vector<double> reference = transfer_dof_vector(before, after, system.reference_diagonal(), true);

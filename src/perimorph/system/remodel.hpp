@@ -66,7 +66,9 @@ struct Remodelled {
 /// costs about twice the assembly of the changed cells' bond pairs: when
 /// those (old and new) outnumber the new model's pairs, the new model is
 /// assembled instead (Remodelled::partial false), so the update never costs
-/// much more than an assembly. `damage` (d at every local quadrature point,
+/// much more than an assembly; spread over processes (K with a
+/// la::Distribution), the new model is always assembled, over the processes.
+/// `damage` (d at every local quadrature point,
 /// THEORY §6; empty: none) lowers the local stiffness of both models alike.
 Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& before,
                    const setup::Discretization& after, const bonds::BrokenBonds* failed,

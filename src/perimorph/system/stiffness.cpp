@@ -82,14 +82,17 @@ AssembledStiffness assemble_stiffness(const setup::Discretization& model,
   return out;
 }
 
-AssembledStiffness assemble_stiffness_over_processes(const setup::Discretization& model) {
-  if (la::world_size() == 1) return assemble_stiffness(model);
+AssembledStiffness assemble_stiffness_over_processes(const setup::Discretization& model,
+                                                     const bonds::BrokenBonds* broken,
+                                                     std::span<const double> damage) {
+  if (la::world_size() == 1) return assemble_stiffness(model, broken, damage);
   const partition::Partition p = partition::coordinate_bisection(model.mesh, la::world_size());
   const bonds::CellGraph local_graph =
       model.nonlocal ? bonds::CellGraph{} : bonds::CellGraph::diagonal(model.mesh.num_cells());
   const bonds::CellGraph& graph = model.nonlocal ? model.nonlocal->graph : local_graph;
   return assemble_stiffness(model,
-                            distribution_of(partition::dof_layout(model.dofmap, p, graph), la::world_rank()));
+                            distribution_of(partition::dof_layout(model.dofmap, p, graph), la::world_rank()),
+                            broken, damage);
 }
 
 }  // namespace perimorph::system

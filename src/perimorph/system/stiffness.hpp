@@ -45,7 +45,10 @@ AssembledStiffness assemble_stiffness(const setup::Discretization& model,
 
 /// K spread over the processes of PETSC_COMM_WORLD: the cells cut into one
 /// part per process by partition::coordinate_bisection, the dofs laid out by
-/// partition::dof_layout. On one process, assemble_stiffness(model). Collective.
-AssembledStiffness assemble_stiffness_over_processes(const setup::Discretization& model);
+/// partition::dof_layout. On one process, assemble_stiffness(model, broken,
+/// damage). Collective.
+AssembledStiffness assemble_stiffness_over_processes(const setup::Discretization& model,
+                                                     const bonds::BrokenBonds* broken = nullptr,
+                                                     std::span<const double> damage = {});
 
 }  // namespace perimorph::system
