@@ -192,7 +192,8 @@ TEST_P(Distributed2D3D, BondsOverAThresholdAreDecidedOnceAndGatheredInTheSerialO
   ASSERT_GT(serial.size(), 10u);
   const auto p = partition::coordinate_bisection(m.mesh, la::world_size());
   std::vector<char> mine(p.owner.size());
-  for (std::size_t c = 0; c < mine.size(); ++c) mine[c] = p.owner[c] == la::world_rank() ? 1 : 0;
+  for (std::size_t cell = 0; cell < mine.size(); ++cell)
+    mine[cell] = p.owner[cell] == la::world_rank() ? 1 : 0;
   const auto decided = assembly::bonds_over(space, u, threshold, mine);
   // Every bond is decided by exactly one process.
   double total = 0.0;

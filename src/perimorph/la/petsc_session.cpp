@@ -109,15 +109,25 @@ std::vector<std::string> unused_options() {
   return out;
 }
 
+namespace {
+
+bool petsc_running() {
+  PetscBool running = PETSC_FALSE;
+  PetscInitialized(&running);
+  return running == PETSC_TRUE;
+}
+
+}  // namespace
+
 int world_size() {
   PetscMPIInt size = 1;
-  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  if (petsc_running()) MPI_Comm_size(PETSC_COMM_WORLD, &size);
   return size;
 }
 
 int world_rank() {
   PetscMPIInt rank = 0;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (petsc_running()) MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   return rank;
 }
 

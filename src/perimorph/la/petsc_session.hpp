@@ -34,9 +34,10 @@ std::vector<std::string> unused_options();
 /// process (collective; `mine` itself on one rank).
 std::vector<double> all_gather(const std::vector<double>& mine);
 
-/// Number of MPI ranks in PETSC_COMM_WORLD.
+/// Number of MPI ranks in PETSC_COMM_WORLD (1 without a PETSc session, e.g.
+/// in `perimorph check`).
 int world_size();
-/// This process's rank in PETSC_COMM_WORLD.
+/// This process's rank in PETSC_COMM_WORLD (0 without a PETSc session).
 int world_rank();
 /// Waits until every rank of PETSC_COMM_WORLD has reached it.
 void barrier();
