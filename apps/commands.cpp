@@ -86,8 +86,6 @@ void require_distributable(const perimorph::casefile::CaseConfig& config, const 
       missing.emplace_back("[material.damage]");
       break;
     }
-  if (config.solver.op == perimorph::casefile::SolverOperator::matrix_free)
-    missing.emplace_back("[solver] operator = \"matrix-free\"");
   if (!restart.empty()) missing.emplace_back("--restart");
   if (checkpoint_every > 0 || (checkpoint_every < 0 && config.output.checkpoint_every > 0))
     missing.emplace_back("checkpoints ([output] checkpoint_every, --checkpoint-every)");
@@ -96,7 +94,8 @@ void require_distributable(const perimorph::casefile::CaseConfig& config, const 
     fmt::print(
         stderr,
         "error: {}: this run was started on {} MPI processes (mpirun -n {}), but {} {} not distributed "
-        "yet; only runs with an assembled stiffness (elastic, with bond failure, with adaptive alpha) are. "
+        "yet; only runs without local damage (elastic, with bond failure, with adaptive alpha, matrix-free) "
+        "are. "
         "Start "
         "it without mpirun, and set OMP_NUM_THREADS for the threads of its assembly and bond loops\n",
         config.path, size, size, fmt::join(missing, ", "), missing.size() == 1 ? "is" : "are");

@@ -2,7 +2,8 @@
 """Distributed runs (issue 17, item 5): one process against two, and two threads against two processes.
 
 For each case (default: B4, the 3D hybrid cube, and B2, the 2D hybrid plate, both elastic; b6_04: B6 at
-h = 0.4δ with bond failure, its first 12 increments, bench/cases/b6_04_first12.toml) it runs `perimorph run` in three
+h = 0.4δ with bond failure, its first 12 increments, bench/cases/b6_04_first12.toml; p4_40: P4 at N = 40,
+matrix-free) it runs `perimorph run` in three
 configurations — 1 process × 1 thread, 1 process × 2 threads, 2 processes (mpiexec) × 1 thread — RUNS times
 each, in turn (A B C A B C ...: a drifting machine moves all three alike), and records per run the wall time,
 the CPU time (user + system of the whole process tree) and the load average before the run; with -log_view it
@@ -29,7 +30,8 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CASES = {"b4": "examples/b4_cube_uniform_3d/case.toml", "b2": "examples/b2_plate_uniform_2d/case.toml",
-         "plate": "examples/plate_tension/case.toml", "b6_04": "bench/cases/b6_04_first12.toml"}
+         "plate": "examples/plate_tension/case.toml", "b6_04": "bench/cases/b6_04_first12.toml",
+         "p4_40": "bench/cases/p4_n40.toml"}
 CONFIGS = [("1 process x 1 thread", 1, 1, []), ("1 process x 2 threads", 1, 2, []),
            ("2 processes x 1 thread", 2, 1, [])]
 # A case solved by a factorization: on several processes it is MUMPS' (la::LinearSolver), so one process

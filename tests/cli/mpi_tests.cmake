@@ -1,6 +1,6 @@
-# Issue 17: `perimorph run` of a case with an assembled stiffness (elastic,
-# with bond failure, with adaptive α) runs on several MPI processes (its
-# stiffness and solve distributed); a case using a stage that is not
+# Issue 17: `perimorph run` of a case without local damage (elastic, with
+# bond failure, with adaptive α, matrix-free) runs on several MPI processes
+# (its stiffness and solve distributed); a case using a stage that is not
 # distributed yet, and every other command, stop at once with one message
 # (rank 0's) and exit status 2 instead of failing inside PETSc or hanging. The
 # distributed assembly and solve are also tested on 1, 2 and 3 processes by a
@@ -49,13 +49,13 @@ if(MPIEXEC_EXECUTABLE)
   # preconditioner takes other iterates), 1e-10 for the direct ones (MUMPS
   # distributed against PETSc's serial Cholesky, CHOLMOD or MUMPS: round-off),
   # 1e-8 for B6 (CG with a kept factor, rtol 1e-12). Elastic: plate_tension,
-  # b2, b1; bond failure: the fracture plate, B6 at h = 2δ/3; bond failure
-  # with adaptive α: the flagship (the hole plate; on 3 processes by hand,
+  # b2, b1, P4 at N = 20 (matrix-free, rtol 1e-8); bond failure: the fracture
+  # plate, B6 at h = 2δ/3; bond failure with adaptive α: the flagship (the hole plate; on 3 processes by hand,
   # docs/benchmarks/distributed-runs.md: 3 processes on CI's two cores take minutes).
   foreach(same "plate_tension/case.toml:2:1e-7" "plate_tension/case.toml:3:1e-7"
                "b2_plate_uniform_2d/case.toml:2:1e-10" "b1_ghost_forces_1d/case.toml:2:1e-7"
                "fracture_plate_2d/case.toml:2:1e-10" "b6_fracture_block_3d/two_thirds.toml:2:1e-8"
-               "hole_plate_2d/case.toml:2:1e-10")
+               "hole_plate_2d/case.toml:2:1e-10" "p4_peridigm_cube_3d/n20.toml:2:1e-7")
     string(REPLACE ":" ";" parts "${same}")
     list(GET parts 0 case)
     list(GET parts 1 ranks)

@@ -12,6 +12,7 @@
 #include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/la/linear_solver.hpp"
 #include "perimorph/la/petsc_session.hpp"
+#include "perimorph/la/shell_matrix.hpp"
 #include "perimorph/partition/dof_layout.hpp"
 #include "perimorph/setup/boundary_conditions.hpp"
 #include "perimorph/setup/discretization.hpp"
@@ -146,6 +147,26 @@ TEST(DistributedVector, AddAtAndSetAtChangeTheEntriesNamedInTheAssemblyNumbering
   v.set_at(set, -1.0);
   for (Index i : set) expected[static_cast<std::size_t>(i)] = -1.0;
   EXPECT_EQ(v.to_replicated(), expected);
+}
+
+TEST(DistributedShell, GetsTheWholeXAndKeepsTheOwnedRowsOfY) {
+  const auto m = setup::build_discretization(mixed_plate());
+  const auto d = distribute(m);
+  const auto n = static_cast<std::size_t>(m.dofmap.num_dofs());
+  // y_i = i · x_i + x_{n−1−i}: every row reads an entry another process may own.
+  la::ShellMatrix A(d, m.dim(), [&](std::span<const double> x, std::span<double> y) {
+    ASSERT_EQ(x.size(), n);
+    for (std::size_t i = 0; i < n; ++i)
+      if (d->owns(static_cast<Index>(i) / m.dim())) y[i] = static_cast<double>(i) * x[i] + x[n - 1 - i];
+  });
+  EXPECT_EQ(A.rows(), static_cast<Index>(n));
+  std::vector<double> xv(n), expected(n);
+  for (std::size_t i = 0; i < n; ++i) xv[i] = 1.0 + 0.5 * static_cast<double>(i);
+  for (std::size_t i = 0; i < n; ++i) expected[i] = static_cast<double>(i) * xv[i] + xv[n - 1 - i];
+  la::Vector x(d, m.dim()), y(d, m.dim());
+  x.assign_replicated(xv);
+  A.mult(x, y);
+  EXPECT_EQ(y.to_replicated(), expected);
 }
 
 TEST_P(Distributed2D3D, DiagonalAndBlocksAreTheSerialOnesOnEveryProcess) {

@@ -85,7 +85,8 @@ StructuredNonlocalOperator::StructuredNonlocalOperator(OffsetBlocks blocks, std:
                                                        std::vector<Index> node_of_cell)
     : b_(std::move(blocks)), n_(cells), node_(std::move(node_of_cell)) {}
 
-void StructuredNonlocalOperator::apply(std::span<const double> x, std::span<double> y) const {
+void StructuredNonlocalOperator::apply(std::span<const double> x, std::span<double> y,
+                                       std::span<const char> cells) const {
   const int dim = b_.dim;
   const Index n0 = n_[0], n1 = n_[1], n2 = n_[2];
   const Index total = n0 * n1 * n2;
@@ -98,6 +99,7 @@ void StructuredNonlocalOperator::apply(std::span<const double> x, std::span<doub
   const double* B = b_.blocks.data();
 #pragma omp parallel for schedule(static)
   for (Index c = 0; c < total; ++c) {
+    if (!cells.empty() && cells[static_cast<std::size_t>(c)] == 0) continue;
     const Index i = c % n0, j = (c / n0) % n1, k = c / (n0 * n1);
     const std::size_t row =
         static_cast<std::size_t>(node_[static_cast<std::size_t>(c)]) * static_cast<std::size_t>(dim);

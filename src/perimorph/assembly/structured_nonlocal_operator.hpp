@@ -39,8 +39,10 @@ class StructuredNonlocalOperator {
   /// the dof node of each cell (dofs node · dim + d).
   StructuredNonlocalOperator(OffsetBlocks blocks, std::array<Index, 3> cells,
                              std::vector<Index> node_of_cell);
-  /// y ← K x (length: cells · dim). OpenMP over cells.
-  void apply(std::span<const double> x, std::span<double> y) const;
+  /// y ← K x (length: cells · dim). OpenMP over cells. With `cells` (one
+  /// flag per cell), only the rows of the flagged cells are written (a
+  /// process's own rows; x must hold every cell's values).
+  void apply(std::span<const double> x, std::span<double> y, std::span<const char> cells = {}) const;
   std::size_t offsets() const { return b_.offsets.size(); }
   /// The pattern of K: each cell with itself and its neighbours at the
   /// offsets (block size dim), exact for the bonds (the cell graph's pattern

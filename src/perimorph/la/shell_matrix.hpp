@@ -7,6 +7,7 @@
 // preconditioning matrix.
 
 #include "perimorph/core/types.hpp"
+#include "perimorph/la/distribution.hpp"
 #include "perimorph/la/petsc_fwd.hpp"
 #include "perimorph/la/vector.hpp"
 
@@ -23,6 +24,11 @@ class ShellMatrix {
   using Apply = std::function<void(std::span<const double> x, std::span<double> y)>;
 
   ShellMatrix(Index size, int block_size, Apply apply);
+  /// Spread over the processes by `distribution` (dof nodes of `block_size`
+  /// entries): `apply` gets the whole x in the assembly's numbering (gathered
+  /// from every process before each product) and must write the rows this
+  /// process owns of y (whole length, assembly numbering; the rest is ignored).
+  ShellMatrix(std::shared_ptr<const Distribution> distribution, int block_size, Apply apply);
   ~ShellMatrix();
   ShellMatrix(ShellMatrix&& other) noexcept;
   ShellMatrix& operator=(ShellMatrix&& other) noexcept;
@@ -34,11 +40,13 @@ class ShellMatrix {
   Index rows() const { return size_; }
   /// The PETSc matrix (la/ only).
   PetscMatHandle handle() const { return m_; }
+  /// What PETSc's product callback reads (la/ only).
+  struct Context;
 
  private:
   PetscMatHandle m_ = nullptr;
   Index size_ = 0;
-  std::unique_ptr<Apply> apply_;  ///< the shell's context: a stable address
+  std::unique_ptr<Context> context_;  ///< the shell's context: a stable address
 };
 
 }  // namespace perimorph::la

@@ -20,14 +20,20 @@ struct ConstrainedSystem::MatrixFree {
       : stiffness(std::move(s)),
         fixed(std::move(prescribed)),
         masked(fixed.size()),
-        K(static_cast<Index>(fixed.size()), dim,
-          [this](std::span<const double> x, std::span<double> y) { stiffness.K.apply(x, y); }),
-        A(static_cast<Index>(fixed.size()), dim, [this](std::span<const double> x, std::span<double> y) {
+        K(shell(dim, [this](std::span<const double> x,
+                            std::span<double> y) { stiffness.K.apply(x, y, stiffness.owned_cells); })),
+        A(shell(dim, [this](std::span<const double> x, std::span<double> y) {
           for (std::size_t k = 0; k < masked.size(); ++k) masked[k] = fixed[k] ? 0.0 : x[k];
-          stiffness.K.apply(masked, y);
+          stiffness.K.apply(masked, y, stiffness.owned_cells);
           for (std::size_t k = 0; k < masked.size(); ++k)
             if (fixed[k]) y[k] = x[k];
-        }) {}
+        })) {}
+  /// A shell laid out as the preconditioner (spread over the processes with it, or serial).
+  la::ShellMatrix shell(int dim, la::ShellMatrix::Apply apply) const {
+    if (const auto& d = stiffness.preconditioner.distribution())
+      return la::ShellMatrix(d, dim, std::move(apply));
+    return la::ShellMatrix(static_cast<Index>(fixed.size()), dim, std::move(apply));
+  }
   MatrixFreeStiffness stiffness;  ///< its preconditioner constrained in place
   std::vector<char> fixed;        ///< 1 on the prescribed dofs
   std::vector<double> masked;     ///< scratch of A's product
@@ -36,7 +42,7 @@ struct ConstrainedSystem::MatrixFree {
 
 namespace {
 
-/// A dof vector with K's layout.
+/// A dof vector with K's layout (for a matrix-free system: its preconditioner's).
 la::Vector dof_vector(const la::Matrix& K, const setup::Discretization& model) {
   if (K.distribution()) return la::Vector(K.distribution(), model.dim());
   return la::Vector(model.dofmap.num_dofs(), model.dim());
@@ -71,19 +77,20 @@ ConstrainedSystem::ConstrainedSystem(const setup::Discretization& model, MatrixF
       A_(no_matrix(model.dim())),
       bc_(std::move(bc)),
       applied_force_(F.begin(), F.end()),
-      rhs_unit_(model.dofmap.num_dofs(), model.dim()),
-      rhs_(model.dofmap.num_dofs(), model.dim()) {
+      rhs_unit_(dof_vector(K.preconditioner, model)),
+      rhs_(dof_vector(K.preconditioner, model)) {
   const Index n = model.dofmap.num_dofs();
   std::vector<char> fixed(static_cast<std::size_t>(n), 0);
   for (Index d : bc_.dofs) fixed[static_cast<std::size_t>(d)] = 1;
   free_ = std::make_unique<MatrixFree>(std::move(K), std::move(fixed), model.dim());
   constrain_rhs(F);
   // The eliminated rows and columns of the preconditioner are zero blocks but
-  // for their diagonal: dropped, so that its AMG sees only the coupling.
+  // for their diagonal: dropped, so that its AMG sees only the coupling (on
+  // one process: without_zero_blocks reads every row).
   la::Matrix& P = free_->stiffness.preconditioner;
-  la::Vector g(n, model.dim()), scratch(n, model.dim());
+  la::Vector g = make_vector(), scratch = make_vector();
   P.eliminate_dirichlet(bc_.dofs, g, scratch);
-  P = P.without_zero_blocks();
+  if (!P.distribution()) P = P.without_zero_blocks();
   P.set_spd();
   initial_diagonal_ = P.diagonal();
 }
@@ -92,7 +99,7 @@ ConstrainedSystem::~ConstrainedSystem() = default;
 ConstrainedSystem::ConstrainedSystem(ConstrainedSystem&&) noexcept = default;
 
 la::Vector ConstrainedSystem::make_vector() const {
-  return dof_vector(K_, model_);
+  return dof_vector(free_ ? free_->stiffness.preconditioner : K_, model_);
 }
 
 void ConstrainedSystem::constrain_rhs(std::span<const double> F) {
@@ -107,11 +114,11 @@ void ConstrainedSystem::constrain_rhs(std::span<const double> F) {
   g.assign_replicated(gv);
   if (free_) {
     // b = F − K g on the free rows, g on the prescribed ones (as eliminate_dirichlet).
-    la::Vector Kg(n, model_.dim());
+    la::Vector Kg = make_vector();
     free_->K.mult(g, Kg);
-    std::vector<double> b = Kg.to_std();
+    std::vector<double> b = Kg.to_replicated();
     for (std::size_t k = 0; k < b.size(); ++k) b[k] = free_->fixed[k] ? gv[k] : F[k] - b[k];
-    rhs_unit_.assign(b);
+    rhs_unit_.assign_replicated(b);
     return;
   }
   rhs_unit_.assign_replicated(F);
@@ -297,10 +304,10 @@ la::SolveReport ConstrainedSystem::solve(double lambda, la::Vector& u) {
     // A's prescribed rows are the identity: started at their values, the
     // solution keeps them to round-off (started elsewhere, a residual relative
     // to ||b|| would let them err by the stiffness' scale).
-    std::vector<double> start = u.to_std();
+    std::vector<double> start = u.to_replicated();
     for (std::size_t k = 0; k < start.size(); ++k)
       if (free_->fixed[k]) start[k] = lambda * prescribed_[k];
-    u.assign(start);
+    u.assign_replicated(start);
   }
   return solver_->solve(rhs_, u);
 }

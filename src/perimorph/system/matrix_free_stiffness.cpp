@@ -1,6 +1,11 @@
 #include "perimorph/system/matrix_free_stiffness.hpp"
 
+#include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/core/error.hpp"
+#include "perimorph/la/petsc_session.hpp"
+#include "perimorph/partition/dof_layout.hpp"
+#include "perimorph/partition/partition.hpp"
+#include "perimorph/system/stiffness.hpp"
 
 #include <cmath>
 
@@ -46,12 +51,24 @@ MatrixFreeStiffness build_matrix_free_stiffness(const setup::Discretization& mod
       config.solver.preconditioner_horizon * layout.spacing.head(config.dim()).maxCoeff();
   const assembly::StructuredNonlocalOperator short_K(grid_offset_blocks(short_config, layout), layout.cells,
                                                      node_of_cell);
-  la::Matrix P(short_K.sparsity());
+  std::shared_ptr<const la::Distribution> distribution;
+  std::vector<char> owned_cells;
+  if (la::world_size() > 1) {
+    const partition::Partition p = partition::coordinate_bisection(model.mesh, la::world_size());
+    distribution = distribution_of(
+        partition::dof_layout(model.dofmap, p, bonds::CellGraph::diagonal(model.mesh.num_cells())),
+        la::world_rank());
+    owned_cells.resize(node_of_cell.size());
+    for (std::size_t c = 0; c < node_of_cell.size(); ++c)
+      owned_cells[c] = distribution->owns(node_of_cell[c]);
+  }
+  // Every process inserts every row; each keeps those it owns (la::Matrix::add).
+  la::Matrix P = distribution ? la::Matrix(short_K.sparsity(), distribution) : la::Matrix(short_K.sparsity());
   short_K.assemble(P);
   P.finalize();
   return {assembly::StructuredNonlocalOperator(grid_offset_blocks(config, layout), layout.cells,
                                                std::move(node_of_cell)),
-          std::move(P)};
+          std::move(P), std::move(owned_cells)};
 }
 
 }  // namespace perimorph::system

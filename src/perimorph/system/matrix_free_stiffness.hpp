@@ -13,15 +13,23 @@
 #include "perimorph/la/matrix.hpp"
 #include "perimorph/setup/discretization.hpp"
 
+#include <vector>
+
 namespace perimorph::system {
 
 struct MatrixFreeStiffness {
   assembly::StructuredNonlocalOperator K;  ///< the case's stiffness, unconstrained
   la::Matrix preconditioner;               ///< the short-horizon stiffness, unconstrained, finalized
+  /// On several processes, per cell, 1 for the cells (DG0: one node each)
+  /// whose rows this process owns (preconditioner.distribution()); empty on one.
+  std::vector<char> owned_cells;
 };
 
 /// Requires model.config.solver.op == matrix_free (setup::check_matrix_free
-/// passed; build_discretization checks it).
+/// passed; build_discretization checks it). On several processes the cells
+/// are cut by partition::coordinate_bisection and the preconditioner spread
+/// over the processes as an assembled stiffness is (each row of a cell's node
+/// on the cell's process). Collective.
 MatrixFreeStiffness build_matrix_free_stiffness(const setup::Discretization& model);
 
 /// The blocks per grid offset of `config`'s non-local model on a grid of
