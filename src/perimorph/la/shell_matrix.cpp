@@ -73,22 +73,19 @@ PetscErrorCode shell_mult(Mat A, Vec x, Vec y) {
 }  // namespace
 
 ShellMatrix::ShellMatrix(Index size, int block_size, Apply apply)
-    : size_(size), context_(std::make_unique<Context>()) {
-  context_->apply = std::move(apply);
-  context_->block_size = block_size;
-  PM_PETSC(MatCreateShell(PETSC_COMM_WORLD, size, size, size, size, context_.get(), &m_));
-  PM_PETSC(MatSetBlockSize(m_, block_size));
-  PM_PETSC(MatShellSetOperation(m_, MATOP_MULT, reinterpret_cast<void (*)(void)>(&shell_mult)));
-  PM_PETSC(MatSetOption(m_, MAT_SYMMETRIC, PETSC_TRUE));
-}
+    : ShellMatrix(nullptr, block_size, std::move(apply), size) {}
 
 ShellMatrix::ShellMatrix(std::shared_ptr<const Distribution> distribution, int block_size, Apply apply)
-    : size_(distribution->num_nodes() * block_size), context_(std::make_unique<Context>()) {
+    : ShellMatrix(distribution, block_size, std::move(apply), distribution->num_nodes() * block_size) {}
+
+ShellMatrix::ShellMatrix(std::shared_ptr<const Distribution> distribution, int block_size, Apply apply,
+                         Index size)
+    : size_(size), context_(std::make_unique<Context>()) {
   context_->apply = std::move(apply);
   context_->distribution = std::move(distribution);
   context_->block_size = block_size;
-  const Index local = context_->distribution->owned_nodes() * block_size;
-  PM_PETSC(MatCreateShell(PETSC_COMM_WORLD, local, local, size_, size_, context_.get(), &m_));
+  const Index local = context_->distribution ? context_->distribution->owned_nodes() * block_size : size;
+  PM_PETSC(MatCreateShell(PETSC_COMM_WORLD, local, local, size, size, context_.get(), &m_));
   PM_PETSC(MatSetBlockSize(m_, block_size));
   PM_PETSC(MatShellSetOperation(m_, MATOP_MULT, reinterpret_cast<void (*)(void)>(&shell_mult)));
   PM_PETSC(MatSetOption(m_, MAT_SYMMETRIC, PETSC_TRUE));

@@ -44,6 +44,8 @@ class ShellMatrix {
   struct Context;
 
  private:
+  /// Both constructors: `size` rows, `distribution` null on one process.
+  ShellMatrix(std::shared_ptr<const Distribution> distribution, int block_size, Apply apply, Index size);
   PetscMatHandle m_ = nullptr;
   Index size_ = 0;
   std::unique_ptr<Context> context_;  ///< the shell's context: a stable address

@@ -3,8 +3,6 @@
 #include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/la/petsc_session.hpp"
-#include "perimorph/partition/dof_layout.hpp"
-#include "perimorph/partition/partition.hpp"
 #include "perimorph/system/stiffness.hpp"
 
 #include <cmath>
@@ -54,10 +52,7 @@ MatrixFreeStiffness build_matrix_free_stiffness(const setup::Discretization& mod
   std::shared_ptr<const la::Distribution> distribution;
   std::vector<char> owned_cells;
   if (la::world_size() > 1) {
-    const partition::Partition p = partition::coordinate_bisection(model.mesh, la::world_size());
-    distribution = distribution_of(
-        partition::dof_layout(model.dofmap, p, bonds::CellGraph::diagonal(model.mesh.num_cells())),
-        la::world_rank());
+    distribution = distribution_over_processes(model, bonds::CellGraph::diagonal(model.mesh.num_cells()));
     owned_cells.resize(node_of_cell.size());
     for (std::size_t c = 0; c < node_of_cell.size(); ++c)
       owned_cells[c] = distribution->owns(node_of_cell[c]);

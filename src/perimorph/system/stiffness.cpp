@@ -86,13 +86,16 @@ AssembledStiffness assemble_stiffness_over_processes(const setup::Discretization
                                                      const bonds::BrokenBonds* broken,
                                                      std::span<const double> damage) {
   if (la::world_size() == 1) return assemble_stiffness(model, broken, damage);
-  const partition::Partition p = partition::coordinate_bisection(model.mesh, la::world_size());
   const bonds::CellGraph local_graph =
       model.nonlocal ? bonds::CellGraph{} : bonds::CellGraph::diagonal(model.mesh.num_cells());
   const bonds::CellGraph& graph = model.nonlocal ? model.nonlocal->graph : local_graph;
-  return assemble_stiffness(model,
-                            distribution_of(partition::dof_layout(model.dofmap, p, graph), la::world_rank()),
-                            broken, damage);
+  return assemble_stiffness(model, distribution_over_processes(model, graph), broken, damage);
+}
+
+std::shared_ptr<const la::Distribution> distribution_over_processes(const setup::Discretization& model,
+                                                                    const bonds::CellGraph& graph) {
+  const partition::Partition p = partition::coordinate_bisection(model.mesh, la::world_size());
+  return distribution_of(partition::dof_layout(model.dofmap, p, graph), la::world_rank());
 }
 
 }  // namespace perimorph::system

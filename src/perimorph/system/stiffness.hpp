@@ -43,6 +43,13 @@ AssembledStiffness assemble_stiffness(const setup::Discretization& model,
                                       const bonds::BrokenBonds* broken = nullptr,
                                       std::span<const double> damage = {});
 
+/// This process's share of the dof nodes of `model` on PETSC_COMM_WORLD: the
+/// cells cut into one part per process by partition::coordinate_bisection,
+/// the nodes laid out by partition::dof_layout with `graph` (the cell pairs
+/// that couple). Collective.
+std::shared_ptr<const la::Distribution> distribution_over_processes(const setup::Discretization& model,
+                                                                    const bonds::CellGraph& graph);
+
 /// K spread over the processes of PETSC_COMM_WORLD: the cells cut into one
 /// part per process by partition::coordinate_bisection, the dofs laid out by
 /// partition::dof_layout. On one process, assemble_stiffness(model, broken,
