@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -74,18 +75,20 @@ void require_one_process() {
 }
 
 /// Stops a run started on more than one MPI process whose case uses a stage
-/// that is not distributed yet (issue 17), with one message; an elastic run
-/// (local, non-local or hybrid, assembled) goes on, distributed.
+/// that is not distributed yet (issue 17), with one message; any other run
+/// goes on, distributed.
 void require_distributable(const perimorph::casefile::CaseConfig& config, const std::string& restart,
                            int checkpoint_every) {
   const int size = perimorph::la::world_size();
   if (size == 1) return;
   std::vector<std::string> missing;
-  for (const auto& m : config.materials)
-    if (m.damage.enabled) {
-      missing.emplace_back("[material.damage]");
-      break;
-    }
+  // The secant damage update is distributed (every process updates the
+  // replicated history alike, each downdating its own rows); the Newton
+  // solve of the damage problem is not.
+  const bool damage = std::any_of(config.materials.begin(), config.materials.end(),
+                                  [](const auto& m) { return m.damage.enabled; });
+  if (damage && config.damage.solver == perimorph::casefile::DamageSolver::newton)
+    missing.emplace_back("[damage] solver = \"newton\" (\"secant\" is distributed)");
   if (!restart.empty()) missing.emplace_back("--restart");
   if (checkpoint_every > 0 || (checkpoint_every < 0 && config.output.checkpoint_every > 0))
     missing.emplace_back("checkpoints ([output] checkpoint_every, --checkpoint-every)");
@@ -94,10 +97,8 @@ void require_distributable(const perimorph::casefile::CaseConfig& config, const 
     fmt::print(
         stderr,
         "error: {}: this run was started on {} MPI processes (mpirun -n {}), but {} {} not distributed "
-        "yet; only runs without local damage (elastic, with bond failure, with adaptive alpha, matrix-free) "
-        "are. "
-        "Start "
-        "it without mpirun, and set OMP_NUM_THREADS for the threads of its assembly and bond loops\n",
+        "yet. Start it without mpirun, and set OMP_NUM_THREADS for the threads of its assembly and bond "
+        "loops\n",
         config.path, size, size, fmt::join(missing, ", "), missing.size() == 1 ? "is" : "are");
     std::fflush(stderr);
   }

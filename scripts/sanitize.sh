@@ -108,10 +108,10 @@ run_asan() {
     # writer and the full disk (fracture runs, 0.5 min each)
     'cli_.*_example_(run|first_increments|fields|plot)'
     'cli_restart_.*' 'cli_second_writer_.*' 'cli_full_disk_.*'
-    # the distributed runs with bond failure under mpiexec (2.5 to 7 min each under ASan);
+    # the distributed runs with bond failure (and damage) under mpiexec (2.5 to 7 min each under ASan);
     # their code, the gathered bond selection and the distributed downdates, is run by
     # perimorph_mpi_tests (mpi_distributed_assembly_and_solve_*) and the elastic runs
-    'cli_mpi_same_answer_(fracture_plate_2d|hole_plate_2d|b6_fracture_block_3d_two_thirds)_2_ranks'
+    'cli_mpi_same_answer_(fracture_plate_2d|hole_plate_2d|b6_fracture_block_3d_two_thirds|b8_damage_handover_3d_half_delta)_2_ranks'
     # the mesh fuzz target's replay (not built, see above)
     'fuzz_corpus_replay_mesh'
     # the verification suite: python scripts running the program on reduced benchmark

@@ -1,5 +1,5 @@
-# Issue 17: `perimorph run` of a case without local damage (elastic, with
-# bond failure, with adaptive α, matrix-free) runs on several MPI processes
+# Issue 17: `perimorph run` (elastic, with bond failure, adaptive α, local
+# damage by secant updates, matrix-free) runs on several MPI processes
 # (its stiffness and solve distributed); a case using a stage that is not
 # distributed yet, and every other command, stop at once with one message
 # (rank 0's) and exit status 2 instead of failing inside PETSc or hanging. The
@@ -7,15 +7,15 @@
 # program of their own (3 oversubscribes a two-core machine).
 if(MPIEXEC_EXECUTABLE)
   set(PM_MPI_ENV "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1;OMPI_MCA_mpi_yield_when_idle=1")
-  # A stage that is not distributed yet (local damage) stops the run at once.
-  add_test(NAME cli_mpi_damage_run_stops_with_one_message
+  # A stage that is not distributed yet (the Newton solve of local damage) stops the run at once.
+  add_test(NAME cli_mpi_newton_damage_run_stops_with_one_message
     COMMAND sh -c "\"$0\" -n 2 \"$1\" run \"$2\" -o \"$3\" --quiet; echo \"exit status $?\""
-            ${MPIEXEC_EXECUTABLE} $<TARGET_FILE:perimorph_cli> ${PROJECT_SOURCE_DIR}/examples/b8_damage_handover_3d/case.toml
-            ${CMAKE_CURRENT_BINARY_DIR}/cli_output/mpi_damage)
-  set_tests_properties(cli_mpi_damage_run_stops_with_one_message PROPERTIES
+            ${MPIEXEC_EXECUTABLE} $<TARGET_FILE:perimorph_cli> ${CMAKE_CURRENT_SOURCE_DIR}/data/runs/damage_newton_bar.toml
+            ${CMAKE_CURRENT_BINARY_DIR}/cli_output/mpi_newton_damage)
+  set_tests_properties(cli_mpi_newton_damage_run_stops_with_one_message PROPERTIES
     ENVIRONMENT "${PM_MPI_ENV}"
     PASS_REGULAR_EXPRESSION
-    "error: [^\n]*b8_damage_handover_3d/case.toml: this run was started on 2 MPI processes \\(mpirun -n 2\\), but \\[material.damage\\] is not distributed yet.*exit status 2"
+    "error: [^\n]*damage_newton_bar.toml: this run was started on 2 MPI processes \\(mpirun -n 2\\), but \\[damage\\] solver = \"newton\" \\(\"secant\" is distributed\\) is not distributed yet.*exit status 2"
     FAIL_REGULAR_EXPRESSION "not distributed yet.*not distributed yet;PETSC ERROR"
     TIMEOUT 120)
 
@@ -50,12 +50,14 @@ if(MPIEXEC_EXECUTABLE)
   # distributed against PETSc's serial Cholesky, CHOLMOD or MUMPS: round-off),
   # 1e-8 for B6 (CG with a kept factor, rtol 1e-12). Elastic: plate_tension,
   # b2, b1, P4 at N = 20 (matrix-free, rtol 1e-8); bond failure: the fracture
-  # plate, B6 at h = 2δ/3; bond failure with adaptive α: the flagship (the hole plate; on 3 processes by hand,
+  # plate, B6 at h = 2δ/3; bond failure with adaptive α: the flagship; local
+# damage handing over to α and bond failure: B8 at h = δ/2 (the hole plate; on 3 processes by hand,
   # docs/benchmarks/distributed-runs.md: 3 processes on CI's two cores take minutes).
   foreach(same "plate_tension/case.toml:2:1e-7" "plate_tension/case.toml:3:1e-7"
                "b2_plate_uniform_2d/case.toml:2:1e-10" "b1_ghost_forces_1d/case.toml:2:1e-7"
                "fracture_plate_2d/case.toml:2:1e-10" "b6_fracture_block_3d/two_thirds.toml:2:1e-8"
-               "hole_plate_2d/case.toml:2:1e-10" "p4_peridigm_cube_3d/n20.toml:2:1e-7")
+               "hole_plate_2d/case.toml:2:1e-10" "p4_peridigm_cube_3d/n20.toml:2:1e-7"
+               "b8_damage_handover_3d/half_delta.toml:2:1e-8")
     string(REPLACE ":" ";" parts "${same}")
     list(GET parts 0 case)
     list(GET parts 1 ranks)
