@@ -77,8 +77,7 @@ void require_one_process() {
 /// Stops a run started on more than one MPI process whose case uses a stage
 /// that is not distributed yet (issue 17), with one message; any other run
 /// goes on, distributed.
-void require_distributable(const perimorph::casefile::CaseConfig& config, const std::string& restart,
-                           int checkpoint_every) {
+void require_distributable(const perimorph::casefile::CaseConfig& config) {
   const int size = perimorph::la::world_size();
   if (size == 1) return;
   std::vector<std::string> missing;
@@ -89,9 +88,6 @@ void require_distributable(const perimorph::casefile::CaseConfig& config, const 
                                   [](const auto& m) { return m.damage.enabled; });
   if (damage && config.damage.solver == perimorph::casefile::DamageSolver::newton)
     missing.emplace_back("[damage] solver = \"newton\" (\"secant\" is distributed)");
-  if (!restart.empty()) missing.emplace_back("--restart");
-  if (checkpoint_every > 0 || (checkpoint_every < 0 && config.output.checkpoint_every > 0))
-    missing.emplace_back("checkpoints ([output] checkpoint_every, --checkpoint-every)");
   if (missing.empty()) return;
   if (perimorph::la::world_rank() == 0) {
     fmt::print(
@@ -192,7 +188,7 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
   int argc = static_cast<int>(args.size());
   char** argv_ptr = argv.data();
   perimorph::la::PetscSession petsc(argc, argv_ptr);
-  require_distributable(config, restart, checkpoint_every);
+  require_distributable(config);
   if (perimorph::la::world_rank() != 0) {  // process 0 reports; the others compute the same figures
     progress.mute();
     quiet = true;

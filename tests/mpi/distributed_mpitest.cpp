@@ -9,6 +9,7 @@
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/assembly/local_assembly.hpp"
 #include "perimorph/assembly/nonlocal_assembly.hpp"
+#include "perimorph/assembly/sparsity.hpp"
 #include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/la/linear_solver.hpp"
 #include "perimorph/la/petsc_session.hpp"
@@ -167,6 +168,36 @@ TEST(DistributedShell, GetsTheWholeXAndKeepsTheOwnedRowsOfY) {
   x.assign_replicated(xv);
   A.mult(x, y);
   EXPECT_EQ(y.to_replicated(), expected);
+}
+
+// A checkpoint's matrix (run/checkpoint.hpp) does not depend on the number of
+// processes: the replicated copy of the distributed matrix is the serial
+// pattern and matrix bit for bit, and a matrix made from it is the same.
+TEST_P(Distributed2D3D, ReplicatedCopyIsTheSerialMatrixAndMakesItAgain) {
+  const auto m = setup::build_discretization(config());
+  const auto d = distribute(m);
+  const auto K = system::assemble_stiffness(m, d);
+  const la::Matrix::Replicated r = K.K.replicated();
+  const assembly::SparsityPattern serial_pattern = assembly::build_sparsity(m.dofmap, &m.nonlocal->graph);
+  EXPECT_EQ(r.pattern.block_size, serial_pattern.block_size);
+  EXPECT_EQ(r.pattern.row_offsets, serial_pattern.row_offsets);
+  EXPECT_EQ(r.pattern.columns, serial_pattern.columns);
+  const Eigen::MatrixXd serial = serial_stiffness(m);
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(serial.rows(), serial.cols());
+  const Index bs = r.pattern.block_size;
+  std::size_t at = 0;
+  for (Index b = 0; b < r.pattern.num_block_rows(); ++b)
+    for (Index i = 0; i < bs; ++i)
+      for (Index c : r.pattern.row(b))
+        for (Index j = 0; j < bs; ++j) dense(b * bs + i, c * bs + j) = r.values[at++];
+  ASSERT_EQ(at, r.values.size());
+  EXPECT_TRUE((serial.array() == dense.array()).all())
+      << "bit for bit; max difference " << (serial - dense).cwiseAbs().maxCoeff();
+  const la::Matrix again = la::Matrix::from_replicated(r, d);
+  EXPECT_TRUE((again.to_dense().array() == serial.array()).all());
+  const la::Matrix::Replicated r2 = again.replicated();
+  EXPECT_EQ(r2.pattern.columns, r.pattern.columns);
+  EXPECT_TRUE(r2.values == r.values);
 }
 
 TEST_P(Distributed2D3D, DiagonalAndBlocksAreTheSerialOnesOnEveryProcess) {

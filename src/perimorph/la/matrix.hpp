@@ -98,6 +98,21 @@ class Matrix final : public assembly::MatrixInserter {
   /// Overwrites the stored values (in row order, as visit_rows gives them) of a
   /// finalized matrix; throws Error if their number differs.
   void set_values(std::span<const double> values);
+  /// The stored entries in the assembly's numbering, on every process: the
+  /// block pattern and the values row by row (a row's columns ascending), as
+  /// block_pattern() and visit_rows give them on one process; distributed,
+  /// every process's rows gathered (collective), so that the same matrix
+  /// gives the same copy on any number of processes (a checkpoint,
+  /// run/checkpoint.hpp).
+  struct Replicated {
+    assembly::SparsityPattern pattern;
+    std::vector<double> values;
+  };
+  Replicated replicated() const;
+  /// The matrix of `r`, an exact copy: Matrix(pattern) with its values, or,
+  /// with a distribution, Matrix(pattern, distribution), each process setting
+  /// the rows it owns (collective). Throws Error if the values do not fit.
+  static Matrix from_replicated(const Replicated& r, std::shared_ptr<const Distribution> distribution);
   /// Dense copy, for tests on tiny matrices; distributed, the whole matrix in
   /// the assembly's numbering on every process (collective).
   Eigen::MatrixXd to_dense() const;

@@ -6,12 +6,14 @@
 #include "perimorph/evolution/checkpoint.hpp"
 #include "perimorph/io/atomic_file.hpp"
 #include "perimorph/io/progress.hpp"
+#include "perimorph/la/petsc_session.hpp"
 #include "perimorph/run/checkpoint.hpp"
 #include "perimorph/run/quasi_static_run.hpp"
 
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <optional>
 
 namespace perimorph::run {
 
@@ -25,8 +27,13 @@ void QuasiStaticRun::checkpoint_if_due() {
 }
 
 void QuasiStaticRun::save_checkpoint() {
-  io::AtomicFile file(checkpoint_path_);
-  core::BinaryWriter out([&](std::string_view bytes) { file.write(bytes); });
+  // Process 0 writes it (every process holds the whole run state); every
+  // process takes part in gathering the distributed system.
+  std::optional<io::AtomicFile> file;
+  if (la::world_rank() == 0) file.emplace(checkpoint_path_);
+  core::BinaryWriter out([&](std::string_view bytes) {
+    if (file) file->write(bytes);
+  });
   write_header(out, disc_->config);
   evolution::save_alpha(state_.alpha, out);
   out.tag("run");
@@ -55,7 +62,7 @@ void QuasiStaticRun::save_checkpoint() {
   system_->save(out);
   out.tag("end");
   out.flush();
-  file.commit();
+  if (file) file->commit();
   summary_.checkpoint_path = checkpoint_path_;
   summary_.checkpoint_increment = state_.increment;
 }
@@ -115,9 +122,9 @@ void QuasiStaticRun::restore(const std::string& path, const RunOptions& /*option
   in.expect("end");
   if (!in.at_end()) in.fail("bytes after its end");
 
-  u_ = la::Vector(n, disc_->dim());
-  internal_ = la::Vector(n, disc_->dim());
-  u_.assign(state_.u);
+  u_ = system_->make_vector();
+  internal_ = system_->make_vector();
+  u_.assign_replicated(state_.u);
   for (const auto& s : setup_.sets) summary_.reaction_names.push_back(s.name);
   output_ = std::make_unique<RunOutput>(*disc_, summary_.output_directory, basename_of(config),
                                         summary_.reaction_names, &at);

@@ -1,8 +1,10 @@
 // ConstrainedSystem::save and ::restored (constrained_system.hpp): the system
-// of a checkpoint, bit for bit.
+// of a checkpoint, bit for bit, on any number of processes (the matrices and
+// vectors saved in the assembly's numbering; collective).
 
 #include "perimorph/core/binary_stream.hpp"
 #include "perimorph/system/constrained_system.hpp"
+#include "perimorph/system/stiffness.hpp"
 
 #include <fmt/format.h>
 
@@ -10,17 +12,22 @@ namespace perimorph::system {
 
 namespace {
 
+/// The matrix in the assembly's numbering, whatever the number of processes
+/// (collective): a checkpoint written on P processes restarts on any number.
 void save_matrix(core::BinaryWriter& out, const la::Matrix& M) {
-  const assembly::SparsityPattern p = M.block_pattern();
-  out.put<int>(p.block_size);
-  out.put_vector(p.row_offsets);
-  out.put_vector(p.columns);
-  out.put<std::uint64_t>(static_cast<std::uint64_t>(M.nonzeros()));
-  M.visit_rows([&](Index, std::span<const Index>, std::span<const double> v) { out.put_values(v); });
+  const la::Matrix::Replicated r = M.replicated();
+  out.put<int>(r.pattern.block_size);
+  out.put_vector(r.pattern.row_offsets);
+  out.put_vector(r.pattern.columns);
+  out.put_vector(r.values);
 }
 
-la::Matrix load_matrix(core::BinaryReader& in, Index rows) {
-  assembly::SparsityPattern p;
+/// Spread over the processes as the model's stiffness is
+/// (system::distribution_over_processes; collective).
+la::Matrix load_matrix(core::BinaryReader& in, const setup::Discretization& model) {
+  const Index rows = model.dofmap.num_dofs();
+  la::Matrix::Replicated r;
+  assembly::SparsityPattern& p = r.pattern;
   p.block_size = in.get<int>();
   p.row_offsets = in.get_vector<Index>();
   p.columns = in.get_vector<Index>();
@@ -29,16 +36,14 @@ la::Matrix load_matrix(core::BinaryReader& in, Index rows) {
                         p.row_offsets.empty() ? 0 : p.num_block_rows() * p.block_size, rows));
   if (p.row_offsets.front() != 0 || static_cast<std::size_t>(p.row_offsets.back()) != p.columns.size())
     in.fail("a matrix pattern that does not add up");
-  for (std::size_t r = 0; r + 1 < p.row_offsets.size(); ++r)
-    if (p.row_offsets[r] > p.row_offsets[r + 1]) in.fail("a matrix pattern that does not add up");
+  for (std::size_t k = 0; k + 1 < p.row_offsets.size(); ++k)
+    if (p.row_offsets[k] > p.row_offsets[k + 1]) in.fail("a matrix pattern that does not add up");
   for (Index c : p.columns)
     if (c < 0 || c >= p.num_block_rows()) in.fail("a matrix column out of range");
-  la::Matrix M(p);
-  const std::vector<double> values = in.get_vector<double>();
-  if (values.size() != p.columns.size() * static_cast<std::size_t>(p.block_size * p.block_size))
+  r.values = in.get_vector<double>();
+  if (r.values.size() != p.columns.size() * static_cast<std::size_t>(p.block_size * p.block_size))
     in.fail("matrix values that do not fit its pattern");
-  M.set_values(values);
-  return M;
+  return la::Matrix::from_replicated(r, distribution_over_processes(model));
 }
 
 }  // namespace
@@ -52,7 +57,7 @@ void ConstrainedSystem::save(core::BinaryWriter& out) const {
   out.tag("system");
   save_matrix(out, K_);
   save_matrix(out, A_);
-  out.put_vector(rhs_unit_.to_std());
+  out.put_vector(rhs_unit_.to_replicated());
   out.put_vector(initial_diagonal_);
   out.put<std::uint64_t>(downdates_);
   out.put_vector(last_downdated_);
@@ -68,16 +73,16 @@ std::unique_ptr<ConstrainedSystem> ConstrainedSystem::restored(const setup::Disc
   }
   in.expect("system");
   const Index n = model.dofmap.num_dofs();
-  la::Matrix K = load_matrix(in, n);
+  la::Matrix K = load_matrix(in, model);
   auto system = std::make_unique<ConstrainedSystem>(model, std::move(K), std::move(bc), F);
-  system->A_ = load_matrix(in, n);
+  system->A_ = load_matrix(in, model);
   system->A_.set_spd();
   const std::vector<double> rhs = in.get_vector<double>();
   system->initial_diagonal_ = in.get_vector<double>();
   if (rhs.size() != static_cast<std::size_t>(n) || system->initial_diagonal_.size() != rhs.size())
     in.fail(fmt::format("vectors of {} and {} values where the model has {} dofs", rhs.size(),
                         system->initial_diagonal_.size(), n));
-  system->rhs_unit_.assign(rhs);
+  system->rhs_unit_.assign_replicated(rhs);
   system->downdates_ = in.get<std::uint64_t>();
   system->last_downdated_ = in.get_vector<Index>();
   return system;

@@ -86,10 +86,13 @@ AssembledStiffness assemble_stiffness_over_processes(const setup::Discretization
                                                      const bonds::BrokenBonds* broken,
                                                      std::span<const double> damage) {
   if (la::world_size() == 1) return assemble_stiffness(model, broken, damage);
-  const bonds::CellGraph local_graph =
-      model.nonlocal ? bonds::CellGraph{} : bonds::CellGraph::diagonal(model.mesh.num_cells());
-  const bonds::CellGraph& graph = model.nonlocal ? model.nonlocal->graph : local_graph;
-  return assemble_stiffness(model, distribution_over_processes(model, graph), broken, damage);
+  return assemble_stiffness(model, distribution_over_processes(model), broken, damage);
+}
+
+std::shared_ptr<const la::Distribution> distribution_over_processes(const setup::Discretization& model) {
+  if (la::world_size() == 1) return nullptr;
+  if (model.nonlocal) return distribution_over_processes(model, model.nonlocal->graph);
+  return distribution_over_processes(model, bonds::CellGraph::diagonal(model.mesh.num_cells()));
 }
 
 std::shared_ptr<const la::Distribution> distribution_over_processes(const setup::Discretization& model,

@@ -50,6 +50,10 @@ AssembledStiffness assemble_stiffness(const setup::Discretization& model,
 std::shared_ptr<const la::Distribution> distribution_over_processes(const setup::Discretization& model,
                                                                     const bonds::CellGraph& graph);
 
+/// The same with the cell graph of `model` (its non-local one; with none,
+/// each cell coupling only itself); null on one process. Collective.
+std::shared_ptr<const la::Distribution> distribution_over_processes(const setup::Discretization& model);
+
 /// K spread over the processes of PETSC_COMM_WORLD: the cells cut into one
 /// part per process by partition::coordinate_bisection, the dofs laid out by
 /// partition::dof_layout. On one process, assemble_stiffness(model, broken,
