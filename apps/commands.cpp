@@ -40,12 +40,13 @@ perimorph::setup::Discretization model_with_bonds(const perimorph::casefile::Cas
 
 }  // namespace
 
-int check(const std::string& path) {
+int check(const std::string& path, bool print) {
   const auto config = perimorph::casefile::parse_case_file(path);
   const auto model = perimorph::setup::build_discretization(config);
   // What `run` builds before its first solve, so that check finds every case
   // error run would find (set names, loads, the critical stretch, ...).
   const auto setup = perimorph::run::prepare_run(model);
+  if (!print) return 0;
   fmt::print(
       "{}: OK — {}D, {} cells, {} nodes, {} dofs, {} material(s), {} increment(s), {} constrained dofs\n",
       path, model.dim(), model.mesh.num_cells(), model.mesh.num_nodes(), model.dofmap.num_dofs(),
@@ -54,25 +55,6 @@ int check(const std::string& path) {
 }
 
 namespace {
-
-/// Stops a command started on more than one MPI process (OneProcessOnly).
-void require_one_process() {
-  const int size = perimorph::la::world_size();
-  if (size == 1) return;
-  // Rank 0 prints, and every rank waits for it: a rank that exited first would
-  // have mpirun kill rank 0 before the message is out.
-  if (perimorph::la::world_rank() == 0) {
-    fmt::print(stderr,
-               "error: this command runs on one MPI process; it was started on {} (mpirun -n {}). "
-               "Only `perimorph run` of an elastic case is distributed: start this one without mpirun, and "
-               "set OMP_NUM_THREADS "
-               "for the threads of its assembly and bond loops\n",
-               size, size);
-    std::fflush(stderr);
-  }
-  perimorph::la::barrier();
-  throw OneProcessOnly("more than one MPI process");
-}
 
 /// Stops a run started on more than one MPI process whose case uses a stage
 /// that is not distributed yet (issue 17), with one message; any other run
@@ -102,11 +84,17 @@ void require_distributable(const perimorph::casefile::CaseConfig& config) {
   throw OneProcessOnly("a stage that is not distributed");
 }
 
-/// A PETSc session with no options of its own (commands that assemble but do not solve).
+/// A PETSc session with no options of its own (commands that assemble but do
+/// not solve). Under mpirun every process computes the command's figures
+/// (ghost-forces spreads its K over them) and process 0 alone prints and
+/// writes them (print_once).
 std::unique_ptr<perimorph::la::PetscSession> quiet_petsc() {
-  auto session = std::make_unique<perimorph::la::PetscSession>();
-  require_one_process();
-  return session;
+  return std::make_unique<perimorph::la::PetscSession>();
+}
+
+/// Prints `text` on standard output from process 0 only.
+void print_once(const std::string& text) {
+  if (perimorph::la::world_rank() == 0) fmt::print("{}", text);
 }
 
 }  // namespace
@@ -115,8 +103,8 @@ int info(const std::string& path, int partition_parts) {
   const auto config = perimorph::casefile::parse_case_file(path);
   auto petsc = quiet_petsc();
   const auto model = model_with_bonds(config);
-  fmt::print("{}", perimorph::diagnostics::info_report(model, path));
-  if (partition_parts > 0) fmt::print("{}", perimorph::diagnostics::partition_report(model, partition_parts));
+  print_once(perimorph::diagnostics::info_report(model, path));
+  if (partition_parts > 0) print_once(perimorph::diagnostics::partition_report(model, partition_parts));
   return 0;
 }
 
@@ -145,6 +133,7 @@ int ghost_forces(const std::string& path, const std::vector<double>& strain, con
   auto petsc = quiet_petsc();
   const auto model = model_with_bonds(config);
   const auto g = perimorph::diagnostics::compute_ghost_forces(model, eps);
+  if (perimorph::la::world_rank() != 0) return 0;  // process 0 writes
   const std::string dir = perimorph::run::resolve_output_directory(config, {out_dir, true});
   const std::string base =
       config.output.basename.empty() ? std::filesystem::path(path).stem().string() : config.output.basename;
@@ -170,7 +159,7 @@ int gc(const std::string& path, std::vector<double> point, std::vector<double> n
   point.resize(3, 0.0);
   normal.resize(3, 0.0);
   const perimorph::Vec3 p(point[0], point[1], point[2]), n(normal[0], normal[1], normal[2]);
-  fmt::print("{}", perimorph::diagnostics::gc_report(model, path, p, n, s_option));
+  print_once(perimorph::diagnostics::gc_report(model, path, p, n, s_option));
   return 0;
 }
 

@@ -21,8 +21,9 @@ struct OneProcessOnly : std::runtime_error {
 };
 
 /// Builds the case as `run` does before its first solve (model, constraints,
-/// loads, reaction sets, fracture set-up) without assembling or solving.
-int check(const std::string& path);
+/// loads, reaction sets, fracture set-up) without assembling or solving;
+/// `print` false: silent (the processes but the first under mpirun).
+int check(const std::string& path, bool print = true);
 
 /// Calibration and discretization figures of a case; with partition_parts > 0
 /// also the partition report (diagnostics/partition_report.hpp).

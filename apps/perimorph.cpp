@@ -28,6 +28,7 @@
 #include <cstdlib>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -203,17 +204,20 @@ int main(int argc, char** argv) {
       "Any crack plane of a box: its area inside the box is computed for any normal (a polygon in 3D, a "
       "segment times the thickness in 2D).");
 
+  // Under mpirun every process meets a command-line error: process 0 prints it.
+  const bool first_process = launcher_rank() == 0;
   if (const std::string message = unknown_command(app, argc, argv); !message.empty()) {
-    fmt::print(stderr, "error: {}\n", message);
+    if (first_process) fmt::print(stderr, "error: {}\n", message);
     return 2;
   }
   const Arguments args = split_arguments(argc, argv);
   const bool run_command = argc >= 2 && std::string_view(argv[1]) == "run";
   if (!args.petsc.empty() && !run_command) {
-    fmt::print(stderr,
-               "error: {} {} not an option of `{}`; PETSc options are taken only by `run`, after the case "
-               "file (perimorph {} --help)\n",
-               fmt::join(args.petsc, " "), args.petsc.size() == 1 ? "is" : "are", argv[1], argv[1]);
+    if (first_process)
+      fmt::print(stderr,
+                 "error: {} {} not an option of `{}`; PETSc options are taken only by `run`, after the case "
+                 "file (perimorph {} --help)\n",
+                 fmt::join(args.petsc, " "), args.petsc.size() == 1 ? "is" : "are", argv[1], argv[1]);
     return 2;
   }
   try {
@@ -223,13 +227,14 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     // CLI11 prints the message (or --help); a command-line error exits 2 like
     // any input error (docs/output.md), not with CLI11's own codes (105, 106, ...).
-    const int code = app.exit(e);
+    std::ostringstream discarded;
+    const int code = first_process ? app.exit(e) : app.exit(e, discarded, discarded);
     return code == 0 ? 0 : 2;
   }
 
   try {
     using namespace perimorph::app;
-    if (*check_cmd) return check(case_path);
+    if (*check_cmd) return check(case_path, first_process);
     if (*info_cmd) return info(case_path, partition_parts);
     if (*ghost_cmd) return ghost_forces(case_path, strain, out_dir);
     if (*gc_cmd) return gc(case_path, gc_point, gc_normal, gc_s_crit);

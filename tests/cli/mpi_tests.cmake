@@ -1,8 +1,8 @@
 # Issue 17: `perimorph run` (elastic, with bond failure, adaptive α, local
 # damage by secant updates, matrix-free) runs on several MPI processes
 # (its stiffness and solve distributed); a case using a stage that is not
-# distributed yet, and every other command, stop at once with one message
-# (rank 0's) and exit status 2 instead of failing inside PETSc or hanging. The
+# distributed yet stops at once with one message (rank 0's) and exit status 2
+# instead of failing inside PETSc or hanging. The
 # distributed assembly and solve are also tested on 1, 2 and 3 processes by a
 # program of their own (3 oversubscribes a two-core machine).
 if(MPIEXEC_EXECUTABLE)
@@ -19,14 +19,28 @@ if(MPIEXEC_EXECUTABLE)
     FAIL_REGULAR_EXPRESSION "not distributed yet.*not distributed yet;PETSC ERROR"
     TIMEOUT 120)
 
-  # Commands other than run are not distributed: info stops the same way.
-  add_test(NAME cli_mpi_info_stops_with_one_message
-    COMMAND sh -c "\"$0\" -n 2 \"$1\" info \"$2\"; echo \"exit status $?\""
-            ${MPIEXEC_EXECUTABLE} $<TARGET_FILE:perimorph_cli> ${PROJECT_SOURCE_DIR}/examples/plate_tension/case.toml)
-  set_tests_properties(cli_mpi_info_stops_with_one_message PROPERTIES
-    ENVIRONMENT "${PM_MPI_ENV}"
-    PASS_REGULAR_EXPRESSION "error: this command runs on one MPI process; it was started on 2 \\(mpirun -n 2\\).*exit status 2"
-    FAIL_REGULAR_EXPRESSION "runs on one MPI process.*runs on one MPI process;PETSC ERROR"
+  # The other commands run under mpirun too, process 0 printing and writing:
+  # info and gc print their report once, as on one process; ghost-forces
+  # spreads its K over the processes and writes the one-process residuals
+  # within round-off (MPIAIJ sums a row's owned and other columns apart).
+  add_test(NAME cli_mpi_info_and_gc_print_once
+    COMMAND sh -c "set -e; \"$1\" info \"$2\" > \"$4.info1\"; \"$0\" -n 2 \"$1\" info \"$2\" > \"$4.info2\"; \
+\"$1\" gc \"$3\" --point 2 1 --normal 0 1 > \"$4.gc1\"; \"$0\" -n 2 \"$1\" gc \"$3\" --point 2 1 --normal 0 1 > \"$4.gc2\"; \
+cmp \"$4.info1\" \"$4.info2\"; cmp \"$4.gc1\" \"$4.gc2\"; grep -c 'G_c =' \"$4.gc2\"; echo same reports"
+            ${MPIEXEC_EXECUTABLE} $<TARGET_FILE:perimorph_cli> ${PROJECT_SOURCE_DIR}/examples/b1_ghost_forces_1d/case.toml
+            ${PROJECT_SOURCE_DIR}/examples/fracture_plate_2d/case.toml ${CMAKE_CURRENT_BINARY_DIR}/cli_output/mpi_reports)
+  set_tests_properties(cli_mpi_info_and_gc_print_once PROPERTIES
+    ENVIRONMENT "${PM_MPI_ENV};OMP_NUM_THREADS=1"
+    PASS_REGULAR_EXPRESSION "^3\nsame reports" TIMEOUT 120)
+  set(out ${CMAKE_CURRENT_BINARY_DIR}/cli_output/mpi_ghost_forces)
+  add_test(NAME cli_mpi_ghost_forces_equal_the_serial_ones
+    COMMAND sh -c "set -e; rm -rf \"$4\"; \"$1\" ghost-forces \"$2\" --strain 1e-3,0,0 -o \"$4/one\"; \
+\"$0\" -n 2 \"$1\" ghost-forces \"$2\" --strain 1e-3,0,0 -o \"$4/two\"; /usr/bin/python3 \"$3\" \"$4/one\" \"$4/two\" 1e-10"
+            ${MPIEXEC_EXECUTABLE} $<TARGET_FILE:perimorph_cli> ${PROJECT_SOURCE_DIR}/examples/b2_plate_uniform_2d/case.toml
+            ${CMAKE_CURRENT_SOURCE_DIR}/cli/compare_distributed.py ${out})
+  set_tests_properties(cli_mpi_ghost_forces_equal_the_serial_ones PROPERTIES
+    ENVIRONMENT "${PM_MPI_ENV};OMP_NUM_THREADS=1"
+    PASS_REGULAR_EXPRESSION "^max ghost-force density [^\n]*\nmax ghost-force density [^\n]*\n.*2 files compared, tolerance 1e-10: ok"
     TIMEOUT 120)
 
   # An input error met by every process is printed once (by process 0).

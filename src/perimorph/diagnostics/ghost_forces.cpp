@@ -22,12 +22,14 @@ GhostForces compute_ghost_forces(const setup::Discretization& model, const Mat3&
     const Vec3 ua = strain * dm.node_coordinate(a);
     for (int d = 0; d < dim; ++d) uv[static_cast<std::size_t>(a * dim + d)] = ua[d];
   }
-  auto assembled = system::assemble_stiffness(model);
-  la::Vector u(n, dim), r(n, dim);
-  u.assign(uv);
+  // Spread over the processes of a distributed run (owner computes), the
+  // residual gathered on every process.
+  auto assembled = system::assemble_stiffness_over_processes(model);
+  la::Vector u = assembled.K.make_vector(), r = assembled.K.make_vector();
+  u.assign_replicated(uv);
   assembled.K.mult(u, r);
   GhostForces g;
-  g.residual = r.to_std();
+  g.residual = r.to_replicated();
   for (Index dof : setup::build_dirichlet(model).dofs) g.residual[static_cast<std::size_t>(dof)] = 0.0;
 
   // Nodal volumes: the load of a unit body force in each component.

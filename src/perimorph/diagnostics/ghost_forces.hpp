@@ -19,6 +19,8 @@ struct GhostForces {
 };
 
 /// `strain` is the symmetric tensor ε̄ (only the model's dim × dim block is used).
+/// Collective: K is spread over the processes of a distributed run
+/// (system::assemble_stiffness_over_processes); every process gets the whole result.
 GhostForces compute_ghost_forces(const setup::Discretization& model, const Mat3& strain);
 
 /// Writes DIR/BASENAME_ghost_forces.vtu (point data ghost_force,

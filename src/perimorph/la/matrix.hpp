@@ -116,6 +116,9 @@ class Matrix final : public assembly::MatrixInserter {
   /// Dense copy, for tests on tiny matrices; distributed, the whole matrix in
   /// the assembly's numbering on every process (collective).
   Eigen::MatrixXd to_dense() const;
+  /// A vector laid out as the matrix's rows (its distribution and block
+  /// size), zero.
+  Vector make_vector() const;
   /// The distribution (null on one process without one).
   const std::shared_ptr<const Distribution>& distribution() const { return distribution_; }
   /// Marks the matrix symmetric positive definite (after finalize).

@@ -42,12 +42,7 @@ struct ConstrainedSystem::MatrixFree {
 
 namespace {
 
-/// A dof vector with K's layout (for a matrix-free system: its preconditioner's).
-la::Vector dof_vector(const la::Matrix& K, const setup::Discretization& model) {
-  if (K.distribution()) return la::Vector(K.distribution(), model.dim());
-  return la::Vector(model.dofmap.num_dofs(), model.dim());
-}
-
+/// A matrix of no rows: the K and A of a matrix-free system.
 la::Matrix no_matrix(int dim) {
   assembly::SparsityPattern p;
   p.block_size = dim;
@@ -64,8 +59,8 @@ ConstrainedSystem::ConstrainedSystem(const setup::Discretization& model, la::Mat
       A_(K_.duplicate()),
       bc_(std::move(bc)),
       applied_force_(F.begin(), F.end()),
-      rhs_unit_(dof_vector(K_, model)),
-      rhs_(dof_vector(K_, model)) {
+      rhs_unit_(K_.make_vector()),
+      rhs_(K_.make_vector()) {
   constrain_rhs(F);
   initial_diagonal_ = A_.diagonal();
 }
@@ -77,8 +72,8 @@ ConstrainedSystem::ConstrainedSystem(const setup::Discretization& model, MatrixF
       A_(no_matrix(model.dim())),
       bc_(std::move(bc)),
       applied_force_(F.begin(), F.end()),
-      rhs_unit_(dof_vector(K.preconditioner, model)),
-      rhs_(dof_vector(K.preconditioner, model)) {
+      rhs_unit_(K.preconditioner.make_vector()),
+      rhs_(K.preconditioner.make_vector()) {
   const Index n = model.dofmap.num_dofs();
   std::vector<char> fixed(static_cast<std::size_t>(n), 0);
   for (Index d : bc_.dofs) fixed[static_cast<std::size_t>(d)] = 1;
@@ -99,7 +94,7 @@ ConstrainedSystem::~ConstrainedSystem() = default;
 ConstrainedSystem::ConstrainedSystem(ConstrainedSystem&&) noexcept = default;
 
 la::Vector ConstrainedSystem::make_vector() const {
-  return dof_vector(free_ ? free_->stiffness.preconditioner : K_, model_);
+  return (free_ ? free_->stiffness.preconditioner : K_).make_vector();
 }
 
 void ConstrainedSystem::constrain_rhs(std::span<const double> F) {
