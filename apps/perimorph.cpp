@@ -241,6 +241,8 @@ int main(int argc, char** argv) {
     return run(case_path, out_dir, quiet, args.petsc, start, restart, checkpoint_every);
   } catch (const perimorph::app::OneProcessOnly&) {  // printed where it was found
     return 2;
+  } catch (const perimorph::StoppedByProcessZero& e) {  // process 0 prints why
+    return e.output ? 5 : 4;
   } catch (const perimorph::Interrupted& e) {
     report("stopped: ", e.what(), false);
     return 128 + e.signal;

@@ -55,6 +55,17 @@ cmp \"$4.info1\" \"$4.info2\"; cmp \"$4.gc1\" \"$4.gc2\"; grep -c 'G_c =' \"$4.g
     FAIL_REGULAR_EXPRESSION "material_misspelt_key.toml.*error: .*material_misspelt_key.toml;process 1"
     TIMEOUT 120)
 
+  # An output error met by process 0 alone (it alone writes): every process
+  # stops at the same point, by itself, and the error is printed once.
+  add_test(NAME cli_mpi_full_disk_stops_every_process_with_one_message
+    COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/cli/mpi_full_disk.sh ${MPIEXEC_EXECUTABLE} $<TARGET_FILE:perimorph_cli>
+            ${PROJECT_SOURCE_DIR}/examples/fracture_plate_2d/case.toml ${CMAKE_CURRENT_BINARY_DIR}/cli_output/mpi_full_disk)
+  set_tests_properties(cli_mpi_full_disk_stops_every_process_with_one_message PROPERTIES
+    ENVIRONMENT "${PM_MPI_ENV};OMP_NUM_THREADS=1"
+    PASS_REGULAR_EXPRESSION "error: cannot write [^\n]*No space left on device\nprocess 0: exit status 5\nprocess 1: exit status 5"
+    FAIL_REGULAR_EXPRESSION "No space left on device.*No space left on device;process 1: error"
+    SKIP_RETURN_CODE 77 TIMEOUT 120)
+
   # Same answers (issue 17, item 4): a run on 1 process and on several writes
   # the same files, the CSV and VTU values within a tolerance
   # (compare_distributed.py; the failed-bond lists too: the same bonds, in the

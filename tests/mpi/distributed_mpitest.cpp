@@ -10,6 +10,7 @@
 #include "perimorph/assembly/local_assembly.hpp"
 #include "perimorph/assembly/nonlocal_assembly.hpp"
 #include "perimorph/assembly/sparsity.hpp"
+#include "perimorph/core/error.hpp"
 #include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/la/linear_solver.hpp"
 #include "perimorph/la/petsc_session.hpp"
@@ -262,6 +263,34 @@ TEST_P(Distributed2D3D, BondsOverAThresholdAreDecidedOnceAndGatheredInTheSerialO
     EXPECT_TRUE(a.e == b.e && a.f == b.f && a.g == b.g && a.h == b.h) << "bond " << k;
     EXPECT_EQ(selected[k].stretch, serial[k].stretch);
     EXPECT_EQ(selected[k].k, serial[k].k);
+  }
+}
+
+// What process 0 alone does (the output) ends the same way on every process.
+TEST(OnProcessZero, AnErrorOfProcessZeroStopsEveryProcess) {
+  int calls = 0;
+  la::on_process_zero([&] { ++calls; });
+  EXPECT_EQ(calls, la::world_rank() == 0 ? 1 : 0);
+  auto fail = [] { throw OutputError("disk full"); };
+  if (la::world_rank() == 0) {
+    EXPECT_THROW(la::on_process_zero(fail), OutputError);
+  } else {
+    try {
+      la::on_process_zero(fail);
+      ADD_FAILURE() << "no exception on process " << la::world_rank();
+    } catch (const StoppedByProcessZero& e) {
+      EXPECT_TRUE(e.output);
+    }
+  }
+  if (la::world_rank() != 0) {
+    try {
+      la::on_process_zero([] { throw std::runtime_error("other"); });
+      ADD_FAILURE() << "no exception on process " << la::world_rank();
+    } catch (const StoppedByProcessZero& e) {
+      EXPECT_FALSE(e.output);
+    }
+  } else {
+    EXPECT_THROW(la::on_process_zero([] { throw std::runtime_error("other"); }), std::runtime_error);
   }
 }
 

@@ -37,6 +37,16 @@ class SolverError : public Error {
   using Error::Error;
 };
 
+/// Thrown on the other processes of a distributed run when process 0 met an
+/// error in what it alone does (la::on_process_zero): they stop where it
+/// stops, silently, with the exit status of its error (`output`: an
+/// OutputError's).
+class StoppedByProcessZero : public Error {
+ public:
+  explicit StoppedByProcessZero(bool output_error) : Error("process 0 stopped the run"), output(output_error) {}
+  bool output;
+};
+
 [[noreturn]] void assertion_failed(const char* expr, const char* file, int line, const std::string& message);
 
 }  // namespace perimorph

@@ -1,11 +1,13 @@
 #include "perimorph/la/petsc_session.hpp"
 
+#include "perimorph/core/error.hpp"
 #include "perimorph/core/types.hpp"
 #include "perimorph/la/petsc_check.hpp"
 
 #include <petscsys.h>
 
 #include <cctype>
+#include <exception>
 #include <iterator>
 #include <sstream>
 #include <type_traits>
@@ -153,6 +155,29 @@ int max_over_processes(int value) {
   int out = value;
   MPI_Allreduce(&value, &out, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
   return out;
+}
+
+void on_process_zero(const std::function<void()>& act) {
+  if (world_size() == 1) {
+    act();
+    return;
+  }
+  std::exception_ptr error;
+  int kind = 0;  // 1: an output error, 2: any other
+  if (world_rank() == 0) {
+    try {
+      act();
+    } catch (const OutputError&) {
+      error = std::current_exception();
+      kind = 1;
+    } catch (...) {
+      error = std::current_exception();
+      kind = 2;
+    }
+  }
+  const int agreed = max_over_processes(kind);
+  if (error) std::rethrow_exception(error);
+  if (agreed != 0) throw StoppedByProcessZero(agreed == 1);
 }
 
 void set_option(const std::string& name, const std::string& value) {

@@ -4,6 +4,7 @@
 // a string of options (e.g. a case file's [solver] petsc_options) with lower
 // precedence than the command line.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,14 @@ void barrier();
 /// The largest of `value` over the ranks of PETSC_COMM_WORLD (collective;
 /// `value` itself on one rank).
 int max_over_processes(int value);
+
+/// Runs `act` on process 0 alone (what it alone does in a run every process
+/// computes: writing the output) and lets every process know how it ended
+/// (collective): an exception it throws is rethrown on process 0 and, as
+/// StoppedByProcessZero, on the others, so that every process stops at the
+/// same point and process 0 alone reports why (issue 17, item 3). On one
+/// process, `act()`.
+void on_process_zero(const std::function<void()>& act);
 
 /// Sets one option ("-ksp_type", "preonly"), replacing any value it had, the
 /// command line's included; an empty value sets a flag. For programs that

@@ -30,7 +30,7 @@ void QuasiStaticRun::save_checkpoint() {
   // Process 0 writes it (every process holds the whole run state); every
   // process takes part in gathering the distributed system.
   std::optional<io::AtomicFile> file;
-  if (la::world_rank() == 0) file.emplace(checkpoint_path_);
+  la::on_process_zero([&] { file.emplace(checkpoint_path_); });
   core::BinaryWriter out([&](std::string_view bytes) {
     if (file) file->write(bytes);
   });
@@ -62,7 +62,7 @@ void QuasiStaticRun::save_checkpoint() {
   system_->save(out);
   out.tag("end");
   out.flush();
-  if (file) file->commit();
+  la::on_process_zero([&] { file->commit(); });
   summary_.checkpoint_path = checkpoint_path_;
   summary_.checkpoint_increment = state_.increment;
 }

@@ -70,13 +70,17 @@ class RunOutput {
   /// BASENAME_NNNN.vtu. With `resume`, continues the files there after that
   /// position (later rows are cut off; io::CsvTable) instead of starting them.
   /// On more than one MPI process, process 0 writes everything (each holds
-  /// the whole state) and the others' RunOutput writes nothing.
+  /// the whole state) and the others' RunOutput writes nothing; each call
+  /// (but write_increment_vtu) is collective (la::on_process_zero), so that
+  /// an error of process 0 stops every process at the same point.
   RunOutput(const setup::Discretization& model, std::string directory, std::string basename,
             std::vector<std::string> reaction_names, const OutputPosition* resume = nullptr);
   OutputPosition position() const;
 
   /// Writes the increment's VTU and lists it in the PVD; with `listed_by_row`
-  /// the PVD entry waits for add_row (below).
+  /// the PVD entry waits for add_row (below). Not collective: on several
+  /// processes, call it on process 0 alone through la::on_process_zero (the
+  /// fields it takes are computed there only; elsewhere it does nothing).
   void write_increment_vtu(const setup::Discretization& model, int increment, double load_factor,
                            std::span<const double> u, const evolution::FractureFields& fracture = {},
                            const evolution::DamageFields& damage = {}, bool listed_by_row = false);
@@ -110,12 +114,13 @@ class RunOutput {
   std::string vtu_path(int increment) const;
   /// BASENAME_failures.csv ("" for a run without [fracture]).
   std::string failures_csv_path() const;
-  bool writes_vtu() const { return pvd_ != nullptr; }
+  /// [output] vtu (the same on every process).
+  bool writes_vtu() const { return vtu_; }
 
  private:
   std::string directory_, basename_;
   int dim_;
-  bool fracture_ = false, adaptive_ = false, damage_ = false;
+  bool fracture_ = false, adaptive_ = false, damage_ = false, vtu_ = false;
   std::unique_ptr<io::OutputLock> lock_;  ///< taken before any file is touched
   std::unique_ptr<io::CsvTable> csv_, failures_csv_, failed_bonds_csv_, alpha_csv_;
   /// A VTU written with listed_by_row, waiting for its row: time and file name.

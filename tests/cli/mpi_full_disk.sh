@@ -1,0 +1,14 @@
+#!/bin/sh
+# mpi_full_disk.sh MPIEXEC PERIMORPH CASE DIR: a distributed run (2 processes)
+# into a 2 MB tmpfs, whose output process 0 alone writes, fills the disk: every
+# process must stop at the same point by itself, with the exit status of an
+# output error, and the error printed once (issue 17, item 3; la::on_process_zero).
+# Each process's exit status is echoed by a shell around it: a process that
+# mpirun had to kill, or that waited forever, prints none. Exit 77 (skipped)
+# where a tmpfs cannot be mounted.
+mpiexec="$1" perimorph="$2" case="$3" d="$4/tmpfs"
+mkdir -p "$d"
+mount -t tmpfs -o size=2M tmpfs "$d" 2>/dev/null || exit 77
+"$mpiexec" -n 2 sh -c '"$0" run "$1" -o "$2" --quiet; echo "process $OMPI_COMM_WORLD_RANK: exit status $?"' \
+  "$perimorph" "$case" "$d" 2>&1 | sort
+umount "$d"
