@@ -16,7 +16,6 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -55,34 +54,6 @@ int check(const std::string& path, bool print) {
 }
 
 namespace {
-
-/// Stops a run started on more than one MPI process whose case uses a stage
-/// that is not distributed yet (issue 17), with one message; any other run
-/// goes on, distributed.
-void require_distributable(const perimorph::casefile::CaseConfig& config) {
-  const int size = perimorph::la::world_size();
-  if (size == 1) return;
-  std::vector<std::string> missing;
-  // The secant damage update is distributed (every process updates the
-  // replicated history alike, each downdating its own rows); the Newton
-  // solve of the damage problem is not.
-  const bool damage = std::any_of(config.materials.begin(), config.materials.end(),
-                                  [](const auto& m) { return m.damage.enabled; });
-  if (damage && config.damage.solver == perimorph::casefile::DamageSolver::newton)
-    missing.emplace_back("[damage] solver = \"newton\" (\"secant\" is distributed)");
-  if (missing.empty()) return;
-  if (perimorph::la::world_rank() == 0) {
-    fmt::print(
-        stderr,
-        "error: {}: this run was started on {} MPI processes (mpirun -n {}), but {} {} not distributed "
-        "yet. Start it without mpirun, and set OMP_NUM_THREADS for the threads of its assembly and bond "
-        "loops\n",
-        config.path, size, size, fmt::join(missing, ", "), missing.size() == 1 ? "is" : "are");
-    std::fflush(stderr);
-  }
-  perimorph::la::barrier();
-  throw OneProcessOnly("a stage that is not distributed");
-}
 
 /// A PETSc session with no options of its own (commands that assemble but do
 /// not solve). Under mpirun every process computes the command's figures
@@ -177,7 +148,6 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
   int argc = static_cast<int>(args.size());
   char** argv_ptr = argv.data();
   perimorph::la::PetscSession petsc(argc, argv_ptr);
-  require_distributable(config);
   if (perimorph::la::world_rank() != 0) {  // process 0 reports; the others compute the same figures
     progress.mute();
     quiet = true;

@@ -11,15 +11,6 @@
 
 namespace perimorph::app {
 
-/// Thrown by a command started on more than one MPI process that is not
-/// distributed (issue 17): every command but `run`, and a run whose case uses a
-/// stage not distributed yet (fracture, damage, adaptivity, the matrix-free
-/// operator, checkpoints), so that it stops at once instead of failing inside
-/// PETSc. The message is already printed (once, by rank 0).
-struct OneProcessOnly : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
 /// Builds the case as `run` does before its first solve (model, constraints,
 /// loads, reaction sets, fracture set-up) without assembling or solving;
 /// `print` false: silent (the processes but the first under mpirun).

@@ -239,8 +239,6 @@ int main(int argc, char** argv) {
     if (*ghost_cmd) return ghost_forces(case_path, strain, out_dir);
     if (*gc_cmd) return gc(case_path, gc_point, gc_normal, gc_s_crit);
     return run(case_path, out_dir, quiet, args.petsc, start, restart, checkpoint_every);
-  } catch (const perimorph::app::OneProcessOnly&) {  // printed where it was found
-    return 2;
   } catch (const perimorph::StoppedByProcessZero& e) {  // process 0 prints why
     return e.output ? 5 : 4;
   } catch (const perimorph::Interrupted& e) {

@@ -85,13 +85,18 @@ DamageNewtonReport solve_damage_newton(const setup::Discretization& disc,
                                        std::vector<double>& u) {
   const Index n = disc.dofmap.num_dofs();
   const assembly::LocalSpace space = disc.local_space();
-  la::Matrix local(assembly::build_sparsity(disc.dofmap));  // K_Δ of the residual
+  // Laid out as the system (spread over the processes of a distributed run:
+  // each process keeps its own rows of what every process assembles whole).
+  const auto& distribution = system.A().distribution();
+  const assembly::SparsityPattern local_pattern = assembly::build_sparsity(disc.dofmap);
+  la::Matrix local = distribution ? la::Matrix(local_pattern, distribution)
+                                  : la::Matrix(local_pattern);  // K_Δ of the residual
   la::Matrix J = system.A().duplicate();
-  la::Vector uv(n, 1), Au(n, 1), fcorr(n, 1);
+  la::Vector uv = system.make_vector(), Au = system.make_vector(), fcorr = system.make_vector();
   std::vector<char> cells;
-  const std::vector<double> b = system.rhs_unit().to_std();  // fixed during the solve
+  const std::vector<double> b = system.rhs_unit().to_replicated();  // fixed during the solve
   auto residual = [&](std::span<const double> x, std::span<double> r) {
-    uv.assign(x);
+    uv.assign_replicated(x);
     system.A().mult(uv, Au);
     local.zero_entries();
     const auto field = damage_increment_field(disc, x, history, false, cells);
@@ -99,17 +104,14 @@ DamageNewtonReport solve_damage_newton(const setup::Discretization& disc,
                                   [&](Index c) { return cells[static_cast<std::size_t>(c)] != 0; });
     local.finalize();
     local.mult(uv, fcorr);
-    const auto a = Au.to_std(), f = fcorr.to_std();
+    const auto a = Au.to_replicated(), f = fcorr.to_replicated();
     for (Index i = 0; i < n; ++i) {
       const auto k = static_cast<std::size_t>(i);
       r[k] = a[k] - lambda * b[k] - (system.prescribed(i) ? 0.0 : f[k]);
     }
   };
   auto jacobian = [&](std::span<const double> x, la::Matrix& Jm) {
-    system.A().visit_rows([&](Index row, std::span<const Index> cols, std::span<const double> values) {
-      const Index r[1] = {row};
-      Jm.add(r, cols, values);
-    });
+    Jm.copy_values_from(system.A());
     const auto field = damage_increment_field(disc, x, history, true, cells);
     FreeSubtractInserter subtract(Jm, system);
     assembly::assemble_elasticity(space, field, subtract,
@@ -120,11 +122,11 @@ DamageNewtonReport solve_damage_newton(const setup::Discretization& disc,
   // Each step by GMRES with the run's preconditioner as it stands (with
   // -ksp_reuse_preconditioner, the GAMG of an earlier A(h): no set-up here).
   la::NonlinearSolver snes(J, residual, jacobian, 1e-6, 1e-300, 12, "damage_", system.solver());
-  la::Vector x(n, disc.dim());
-  x.assign(u);
+  la::Vector x = system.make_vector();
+  x.assign_replicated(u);
   const la::NonlinearReport rep = snes.solve(x);
   DamageNewtonReport out{rep.converged, rep.iterations, rep.reason};
-  if (rep.converged) u = x.to_std();
+  if (rep.converged) u = x.to_replicated();
   return out;
 }
 

@@ -32,11 +32,10 @@ namespace {
 
 /// ½ uᵀ K u − λ Fᵀ u (K the system's unconstrained stiffness, F the applied force at load factor 1).
 double potential(const system::ConstrainedSystem& system, std::span<const double> u, double lambda) {
-  const auto n = static_cast<Index>(u.size());
-  la::Vector x(n, 1), Kx(n, 1);
-  x.assign(u);
+  la::Vector x = system.make_vector(), Kx = system.make_vector();
+  x.assign_replicated(u);
   system.K().mult(x, Kx);
-  const auto k = Kx.to_std();
+  const auto k = Kx.to_replicated();
   const auto& F = system.applied_force();
   double e = 0.0;
   for (std::size_t i = 0; i < u.size(); ++i) e += 0.5 * u[i] * k[i] - lambda * F[i] * u[i];

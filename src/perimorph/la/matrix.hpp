@@ -119,6 +119,9 @@ class Matrix final : public assembly::MatrixInserter {
   /// A vector laid out as the matrix's rows (its distribution and block
   /// size), zero.
   Vector make_vector() const;
+  /// Overwrites the values with those of `other`, a matrix of the same
+  /// pattern and layout (a duplicate() of it, or its original).
+  void copy_values_from(const Matrix& other);
   /// The distribution (null on one process without one).
   const std::shared_ptr<const Distribution>& distribution() const { return distribution_; }
   /// Marks the matrix symmetric positive definite (after finalize).

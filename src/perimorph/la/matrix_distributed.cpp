@@ -55,13 +55,6 @@ Matrix::Matrix(const assembly::SparsityPattern& pattern, std::shared_ptr<const D
   direct_ = false;
 }
 
-Vector Matrix::make_vector() const {
-  PetscInt bs = 1;
-  PM_PETSC(MatGetBlockSize(m_, &bs));
-  if (distribution_) return Vector(distribution_, static_cast<int>(bs));
-  return Vector(rows(), static_cast<int>(bs));
-}
-
 bool Matrix::acquire_distributed_view() {
   if (dview_) return true;
   PetscBool mpiaij = PETSC_FALSE;

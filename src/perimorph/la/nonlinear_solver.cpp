@@ -4,37 +4,34 @@
 
 #include <petscsnes.h>
 
+#include <exception>
+#include <utility>
+
 namespace perimorph::la {
 
 namespace {
 
+// An exception does not cross PETSc's C frames: it is kept and rethrown
+// after SNESSolve returns (NonlinearSolver::solve).
 PetscErrorCode residual_callback(SNES /*snes*/, Vec u, Vec r, void* ctx) {
   auto& solver = *static_cast<NonlinearSolver*>(ctx);
-  PetscInt n = 0;
-  PetscCall(VecGetLocalSize(u, &n));
-  const PetscScalar* ua = nullptr;
-  PetscScalar* ra = nullptr;
-  PetscCall(VecGetArrayRead(u, &ua));
-  PetscCall(VecGetArray(r, &ra));
-  const auto size = static_cast<std::size_t>(n);
-  solver.residual()(std::span<const double>(ua, size), std::span<double>(ra, size));
-  PetscCall(VecRestoreArray(r, &ra));
-  PetscCall(VecRestoreArrayRead(u, &ua));
-  ++solver.residual_evaluations;
+  try {
+    solver.evaluate_residual(u, r);
+  } catch (...) {
+    solver.callback_error = std::current_exception();
+    return PETSC_ERR_LIB;
+  }
   return 0;
 }
 
 PetscErrorCode jacobian_callback(SNES /*snes*/, Vec u, Mat /*J*/, Mat /*P*/, void* ctx) {
   auto& solver = *static_cast<NonlinearSolver*>(ctx);
-  PetscInt n = 0;
-  PetscCall(VecGetLocalSize(u, &n));
-  const PetscScalar* ua = nullptr;
-  PetscCall(VecGetArrayRead(u, &ua));
-  Matrix& J = solver.jacobian_matrix();
-  J.zero_entries();
-  solver.jacobian()(std::span<const double>(ua, static_cast<std::size_t>(n)), J);
-  J.finalize();
-  PetscCall(VecRestoreArrayRead(u, &ua));
+  try {
+    solver.evaluate_jacobian(u);
+  } catch (...) {
+    solver.callback_error = std::current_exception();
+    return PETSC_ERR_LIB;
+  }
   return 0;
 }
 
@@ -73,7 +70,12 @@ PetscErrorCode converged_or_stagnated(SNES snes, PetscInt it, PetscReal xnorm, P
 NonlinearSolver::NonlinearSolver(Matrix& J, Residual residual, Jacobian jacobian, double rtol, double atol,
                                  int max_iterations, const std::string& options_prefix,
                                  const LinearSolver* preconditioner)
-    : J_(J), residual_(std::move(residual)), jacobian_(std::move(jacobian)), r_(J.rows(), 1) {
+    : J_(J),
+      residual_(std::move(residual)),
+      jacobian_(std::move(jacobian)),
+      r_(J.make_vector()),
+      u_whole_(J.make_vector()),
+      r_whole_(J.make_vector()) {
   PM_PETSC(SNESCreate(PETSC_COMM_WORLD, &snes_));
   PM_PETSC(SNESSetOptionsPrefix(snes_, options_prefix.c_str()));
   PM_PETSC(SNESSetType(snes_, SNESNEWTONLS));
@@ -101,6 +103,45 @@ NonlinearSolver::NonlinearSolver(Matrix& J, Residual residual, Jacobian jacobian
   PM_PETSC(SNESSetFromOptions(snes_));
 }
 
+void NonlinearSolver::evaluate_residual(PetscVecHandle u, PetscVecHandle r) {
+  ++residual_evaluations;
+  if (J_.distribution()) {
+    PM_PETSC(VecCopy(u, u_whole_.handle()));
+    const std::vector<double> x = u_whole_.to_replicated();
+    std::vector<double> f(x.size());
+    residual_(x, f);
+    r_whole_.assign_replicated(f);
+    PM_PETSC(VecCopy(r_whole_.handle(), r));
+    return;
+  }
+  PetscInt n = 0;
+  PM_PETSC(VecGetLocalSize(u, &n));
+  const PetscScalar* ua = nullptr;
+  PetscScalar* ra = nullptr;
+  PM_PETSC(VecGetArrayRead(u, &ua));
+  PM_PETSC(VecGetArray(r, &ra));
+  const auto size = static_cast<std::size_t>(n);
+  residual_(std::span<const double>(ua, size), std::span<double>(ra, size));
+  PM_PETSC(VecRestoreArray(r, &ra));
+  PM_PETSC(VecRestoreArrayRead(u, &ua));
+}
+
+void NonlinearSolver::evaluate_jacobian(PetscVecHandle u) {
+  J_.zero_entries();
+  if (J_.distribution()) {
+    PM_PETSC(VecCopy(u, u_whole_.handle()));
+    jacobian_(u_whole_.to_replicated(), J_);
+  } else {
+    PetscInt n = 0;
+    PM_PETSC(VecGetLocalSize(u, &n));
+    const PetscScalar* ua = nullptr;
+    PM_PETSC(VecGetArrayRead(u, &ua));
+    jacobian_(std::span<const double>(ua, static_cast<std::size_t>(n)), J_);
+    PM_PETSC(VecRestoreArrayRead(u, &ua));
+  }
+  J_.finalize();
+}
+
 NonlinearSolver::~NonlinearSolver() {
   if (snes_) SNESDestroy(&snes_);
 }
@@ -108,7 +149,10 @@ NonlinearSolver::~NonlinearSolver() {
 NonlinearReport NonlinearSolver::solve(Vector& u) {
   residual_evaluations = 0;
   stagnated = false;
-  PM_PETSC(SNESSolve(snes_, nullptr, u.handle()));
+  callback_error = nullptr;
+  const PetscErrorCode status = SNESSolve(snes_, nullptr, u.handle());
+  if (callback_error) std::rethrow_exception(std::exchange(callback_error, nullptr));
+  PM_PETSC(status);
   NonlinearReport report;
   SNESConvergedReason reason;
   PM_PETSC(SNESGetConvergedReason(snes_, &reason));

@@ -15,6 +15,7 @@
 #include "perimorph/la/petsc_fwd.hpp"
 #include "perimorph/la/vector.hpp"
 
+#include <exception>
 #include <functional>
 #include <span>
 #include <string>
@@ -33,7 +34,7 @@ struct NonlinearReport {
 
 class NonlinearSolver {
  public:
-  /// r = F(u) (both of the matrix's size).
+  /// r = F(u) (both of the matrix's size, whole, in the assembly's numbering).
   using Residual = std::function<void(std::span<const double> u, std::span<double> r)>;
   /// J = ∂F/∂u at u: J is zeroed before the call; add into it (Matrix::add),
   /// the solver finalizes it after.
@@ -56,10 +57,13 @@ class NonlinearSolver {
   /// 10 % in each of two consecutive steps.
   NonlinearReport solve(Vector& u);
 
-  // For the PETSc callbacks (la/nonlinear_solver.cpp).
-  const Residual& residual() const { return residual_; }
-  const Jacobian& jacobian() const { return jacobian_; }
-  Matrix& jacobian_matrix() { return J_; }
+  // For the PETSc callbacks (la/nonlinear_solver.cpp): F and J at u. On
+  // several processes (a distributed J), u is gathered whole for the
+  // callbacks (assembly numbering, on every process) and each process keeps
+  // its own entries of the r they compute whole.
+  void evaluate_residual(PetscVecHandle u, PetscVecHandle r);
+  void evaluate_jacobian(PetscVecHandle u);
+  std::exception_ptr callback_error;  ///< thrown in a callback, rethrown by solve
   int residual_evaluations = 0;
   std::vector<double> residual_norms;  ///< ||F|| after each step of the current solve
   bool stagnated = false;
@@ -70,6 +74,7 @@ class NonlinearSolver {
   Residual residual_;
   Jacobian jacobian_;
   Vector r_;
+  Vector u_whole_, r_whole_;  ///< scratch of a distributed solve (J's layout)
 };
 
 }  // namespace perimorph::la
