@@ -24,13 +24,7 @@ BondFailure::BondFailure(const setup::Discretization& disc)
   if (!regions.empty()) no_fail_.assign(static_cast<std::size_t>(disc.mesh.num_cells()), 0);
   for (const std::string& region : regions)
     for (Index c : disc.mesh.cell_sets.at(region)) no_fail_[static_cast<std::size_t>(c)] = 1;
-  const int processes = la::world_size();
-  if (processes > 1) {
-    const partition::Partition p = partition::coordinate_bisection(disc.mesh, processes);
-    const int rank = la::world_rank();
-    decides_.resize(p.owner.size());
-    for (std::size_t c = 0; c < p.owner.size(); ++c) decides_[c] = p.owner[c] == rank ? 1 : 0;
-  }
+  decides_ = partition::cells_of_part(disc.mesh, la::world_size(), la::world_rank());
 }
 
 namespace {

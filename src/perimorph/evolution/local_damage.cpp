@@ -5,6 +5,8 @@
 #include "perimorph/core/error.hpp"
 #include "perimorph/evolution/damage_newton.hpp"
 #include "perimorph/fem/material.hpp"
+#include "perimorph/la/petsc_session.hpp"
+#include "perimorph/partition/partition.hpp"
 
 #include <algorithm>
 #include <array>
@@ -44,6 +46,24 @@ double potential(const system::ConstrainedSystem& system, std::span<const double
 
 }  // namespace
 
+/// Every process's changes (each from its own cells, in point order) on every
+/// process, in point order: the one-process order.
+std::vector<LocalDamage::Change> LocalDamage::gather_changes(const std::vector<Change>& mine) {
+  constexpr std::size_t packed_size = 4;
+  std::vector<double> packed;
+  packed.reserve(mine.size() * packed_size);
+  for (const Change& ch : mine)
+    packed.insert(packed.end(), {static_cast<double>(ch.point), ch.d, ch.Y, ch.volume});
+  const std::vector<double> all = la::all_gather(packed);
+  std::vector<Change> out(all.size() / packed_size);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const double* v = all.data() + i * packed_size;
+    out[i] = {static_cast<std::size_t>(v[0]), v[1], v[2], v[3]};
+  }
+  std::sort(out.begin(), out.end(), [](const Change& a, const Change& b) { return a.point < b.point; });
+  return out;
+}
+
 void LocalDamage::ledger_move(RunState& state, const system::ConstrainedSystem& system,
                               std::span<const double> u_newton) {
   state.energy.overshoot -=
@@ -53,7 +73,8 @@ void LocalDamage::ledger_move(RunState& state, const system::ConstrainedSystem& 
 LocalDamage::LocalDamage(const setup::Discretization& disc)
     : disc_(&disc),
       tolerance_(disc.config.damage.tolerance),
-      newton_(disc.config.damage.solver == casefile::DamageSolver::newton) {
+      newton_(disc.config.damage.solver == casefile::DamageSolver::newton),
+      decides_(partition::cells_of_part(disc.mesh, la::world_size(), la::world_rank())) {
   PERIMORPH_ASSERT(disc.damage.has_value(), "LocalDamage needs a damage model");
 }
 
@@ -75,6 +96,7 @@ Proposal LocalDamage::inspect(const RunState& state, const system::ConstrainedSy
     for (Index c = 0; c < ncells; ++c) {
       const int law = dm.law_of(c);
       if (law < 0 || !disc_->has_local_stiffness(c)) continue;
+      if (!decides_.empty() && decides_[static_cast<std::size_t>(c)] == 0) continue;  // another process's
       const fem::DamageLaw& L = dm.laws[static_cast<std::size_t>(law)];
       const double* C0 = dm.C0[static_cast<std::size_t>(law)].data();
       assembly::strains_at_points(space, c, state.u, strain, volume);
@@ -88,11 +110,9 @@ Proposal LocalDamage::inspect(const RunState& state, const system::ConstrainedSy
       }
     }
   }
-  for (auto& changes : per_cell)
-    for (const Change& ch : changes) {
-      largest_ = std::max(largest_, ch.d - state.history[ch.point]);
-      proposed_.push_back(ch);
-    }
+  for (auto& changes : per_cell) proposed_.insert(proposed_.end(), changes.begin(), changes.end());
+  if (!decides_.empty()) proposed_ = gather_changes(proposed_);
+  for (const Change& ch : proposed_) largest_ = std::max(largest_, ch.d - state.history[ch.point]);
   if (largest_ <= tolerance_) proposed_.clear();
   return {proposed_.size()};
 }

@@ -68,12 +68,17 @@ class LocalDamage final : public Component {
   };
   static void ledger_move(RunState& state, const system::ConstrainedSystem& system,
                           std::span<const double> u_newton);
+  static std::vector<Change> gather_changes(const std::vector<Change>& mine);
   const setup::Discretization* disc_;  ///< non-owning: the run's current discretization
   double tolerance_ = 0.0;
   bool newton_ = false;
   int newton_steps_ = 0, newton_failures_ = 0;
   int newton_failed_in_ = -1;  ///< the increment where Newton last failed: not tried again there
   double largest_ = 0.0;
+  /// The cells this process updates (1), empty on one process: on several,
+  /// each process computes the strains of its own cells and the changes are
+  /// gathered (partition::cells_of_part), so each point is looked at once.
+  std::vector<char> decides_;
   std::vector<Change> proposed_;
   std::vector<std::pair<Index, int>> newly_critical_;
 };

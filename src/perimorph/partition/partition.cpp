@@ -46,6 +46,14 @@ void bisect(std::vector<Index>& cells, std::size_t lo, std::size_t hi, int first
 
 }  // namespace
 
+std::vector<char> cells_of_part(const mesh::Mesh& mesh, int parts, int part) {
+  if (parts == 1) return {};
+  const Partition p = coordinate_bisection(mesh, parts);
+  std::vector<char> mine(p.owner.size(), 0);
+  for (std::size_t c = 0; c < p.owner.size(); ++c) mine[c] = p.owner[c] == part ? 1 : 0;
+  return mine;
+}
+
 Partition coordinate_bisection(const mesh::Mesh& mesh, int parts) {
   const Index n = mesh.num_cells();
   if (parts < 1 || parts > n)

@@ -34,6 +34,12 @@ struct Partition {
 /// Throws InputError if parts < 1 or parts > cells.
 Partition coordinate_bisection(const mesh::Mesh& mesh, int parts);
 
+/// The cells of part `part` of coordinate_bisection(mesh, parts), marked 1
+/// (empty for one part): the cells a process of a distributed run visits in
+/// a pass that visits each cell once over all processes (the stretch pass,
+/// the damage update).
+std::vector<char> cells_of_part(const mesh::Mesh& mesh, int parts, int part);
+
 /// The cells each cell is coupled to: those sharing a node with it (CG dofs,
 /// local assembly) and its neighbours in `graph` (bonds), the cell itself
 /// included; rows sorted. The graph a partitioner should cut least.
