@@ -112,6 +112,9 @@ run_asan() {
     # their code, the gathered bond selection and the distributed downdates, is run by
     # perimorph_mpi_tests (mpi_distributed_assembly_and_solve_*) and the elastic runs
     'cli_mpi_same_answer_(fracture_plate_2d|hole_plate_2d|b6_fracture_block_3d_two_thirds|b8_damage_handover_3d_half_delta)_2_ranks'
+    # five fracture runs of the example, like cli_restart_* (the checkpoint's gathering and
+    # setting of the matrices run in perimorph_mpi_tests' replicated-copy test)
+    'cli_mpi_checkpoint_continues_on_another_number_of_processes'
     # the mesh fuzz target's replay (not built, see above)
     'fuzz_corpus_replay_mesh'
     # the verification suite: python scripts running the program on reduced benchmark
