@@ -166,6 +166,9 @@ class Matrix final : public assembly::MatrixInserter {
                        std::span<const double> values);
   void release_distributed_view() const;
   Eigen::MatrixXd distributed_to_dense() const;
+  /// The assembly's number of each row in the distributed numbering (the
+  /// inverse of the distribution's, scalar rows).
+  std::vector<Index> assembly_rows() const;
   /// The principal blocks over consecutive runs of `dofs` (run k: sizes[k]
   /// dofs), gathered on every process (collective).
   std::vector<Eigen::MatrixXd> distributed_blocks(std::span<const Index> dofs,

@@ -132,18 +132,23 @@ void Matrix::release_distributed_view() const {
   return_csr(v->off, v->o);
 }
 
-Eigen::MatrixXd Matrix::distributed_to_dense() const {
-  release_view();
-  // The owned rows, by assembly numbering, summed over the processes.
+std::vector<Index> Matrix::assembly_rows() const {
   const Distribution& d = *distribution_;
   PetscInt bs = 1;
   PM_PETSC(MatGetBlockSize(m_, &bs));
-  const Index n = d.num_nodes() * bs;
-  std::vector<Index> to_assembly(static_cast<std::size_t>(n));
+  std::vector<Index> to_assembly(static_cast<std::size_t>(d.num_nodes() * bs));
   for (Index node = 0; node < d.num_nodes(); ++node)
     for (Index k = 0; k < bs; ++k)
       to_assembly[static_cast<std::size_t>(d.to_distributed[static_cast<std::size_t>(node)] * bs + k)] =
           node * bs + k;
+  return to_assembly;
+}
+
+Eigen::MatrixXd Matrix::distributed_to_dense() const {
+  release_view();
+  // The owned rows, by assembly numbering, summed over the processes.
+  const std::vector<Index> to_assembly = assembly_rows();
+  const auto n = static_cast<Index>(to_assembly.size());
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
   PetscInt first = 0, last = 0;
   PM_PETSC(MatGetOwnershipRange(m_, &first, &last));

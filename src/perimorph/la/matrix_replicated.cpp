@@ -28,13 +28,8 @@ Matrix::Replicated Matrix::replicated() const {
   release_view();
   PetscInt bs = 1;
   PM_PETSC(MatGetBlockSize(m_, &bs));
-  const Distribution& d = *distribution_;
-  const Index n = d.num_nodes() * bs;
-  std::vector<Index> to_assembly(static_cast<std::size_t>(n));
-  for (Index node = 0; node < d.num_nodes(); ++node)
-    for (Index k = 0; k < bs; ++k)
-      to_assembly[static_cast<std::size_t>(d.to_distributed[static_cast<std::size_t>(node)] * bs + k)] =
-          node * bs + k;
+  const std::vector<Index> to_assembly = assembly_rows();
+  const auto n = static_cast<Index>(to_assembly.size());
   // This process's rows, each as [row, count, columns..., values...] (the
   // numbers exact in doubles below 2^53), its columns ascending.
   PetscInt rstart = 0, rend = 0;
