@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Independent reader and checker for VTK XML UnstructuredGrid (.vtu) files and
-ParaView collections (.pvd). Standard library only (xml.etree, base64, struct):
+"""Independent reader and checker for VTK XML UnstructuredGrid (.vtu) files, their
+parallel index (.pvtu: the pieces of a distributed run) and ParaView collections (.pvd). Standard library only (xml.etree, base64, struct):
 it shares no code with perimorph's writer and needs no VTK installation.
 
 Supported .vtu data: DataArray format="ascii", or format="binary" (inline
@@ -214,8 +214,72 @@ def read_vtu(path, shape_check=True):
     return result
 
 
+def read_pvtu(path, shape_check=True):
+    """Parses a .pvtu (the pieces of a distributed run, one per process) and every piece it lists;
+    checks that each piece holds the declared arrays and, where the pieces carry a cell array `cell`
+    (perimorph's: the cell's number in the whole mesh), that they hold every cell exactly once.
+    Returns one grid in read_vtu's form: cells in the order of `cell` (which is then dropped), the
+    pieces' points one after the other (a point on a boundary between pieces appears in each)."""
+    try:
+        root = ET.parse(path).getroot()
+    except (ET.ParseError, OSError) as e:
+        raise CheckError(f"cannot parse XML: {e}") from None
+    grid = root.find("./PUnstructuredGrid")
+    if root.tag != "VTKFile" or root.get("type") != "PUnstructuredGrid" or grid is None:
+        raise CheckError("root is not <VTKFile type=\"PUnstructuredGrid\"> with a <PUnstructuredGrid>")
+    declared = {key: {a.get("Name"): int(a.get("NumberOfComponents", "1")) for a in grid.findall(xpath)}
+                for key, xpath in (("point_data", "./PPointData/PDataArray"),
+                                   ("cell_data", "./PCellData/PDataArray"))}
+    ppoints = grid.findall("./PPoints/PDataArray")
+    if len(ppoints) != 1 or ppoints[0].get("NumberOfComponents") != "3":
+        raise CheckError("PPoints must declare one PDataArray with 3 components")
+    sources = [p.get("Source") for p in grid.findall("./Piece")]
+    if not sources or not all(sources):
+        raise CheckError("no Piece, or a Piece without Source")
+    merged = {"path": path, "points": [], "cells": [], "types": [], "point_data": {}, "cell_data": {},
+              "pieces": len(sources)}
+    cell_values = {}
+    for src in sources:
+        full = os.path.join(os.path.dirname(path), src)
+        if not os.path.isfile(full):
+            raise CheckError(f"piece '{src}' does not exist")
+        try:
+            piece = read_vtu(full, shape_check)
+        except CheckError as e:
+            raise CheckError(f"{src}: {e}") from None
+        for key in ("point_data", "cell_data"):
+            have = {n: a["components"] for n, a in piece[key].items()}
+            if have != declared[key]:
+                raise CheckError(f"{src}: {key} arrays {have}, the index declares {declared[key]}")
+        shift = len(merged["points"])
+        merged["points"] += piece["points"]
+        merged["cells"] += [[n + shift for n in c] for c in piece["cells"]]
+        merged["types"] += piece["types"]
+        for key, store in (("point_data", merged["point_data"]), ("cell_data", cell_values)):
+            for name, arr in piece[key].items():
+                store.setdefault(name, {"name": name, "type": arr["type"], "components": arr["components"],
+                                        "values": []})["values"] += arr["values"]
+    if "cell" in cell_values:
+        ids = [int(x) for x in cell_values.pop("cell")["values"]]
+        if sorted(ids) != list(range(len(ids))):
+            raise CheckError(f"the pieces' `cell` numbers are not each cell 0..{len(ids) - 1} once")
+        order = sorted(range(len(ids)), key=ids.__getitem__)
+        merged["cells"] = [merged["cells"][i] for i in order]
+        merged["types"] = [merged["types"][i] for i in order]
+        for arr in cell_values.values():
+            k = arr["components"]
+            arr["values"] = [v for i in order for v in arr["values"][k * i:k * i + k]]
+    merged["cell_data"] = cell_values
+    return merged
+
+
+def read_grid(path, shape_check=True):
+    """read_pvtu for a .pvtu, read_vtu otherwise."""
+    return read_pvtu(path, shape_check) if path.endswith(".pvtu") else read_vtu(path, shape_check)
+
+
 def read_pvd(path, shape_check=True):
-    """Parses a .pvd and every .vtu it lists; returns [(time, vtu dict)]."""
+    """Parses a .pvd and every .vtu (or .pvtu and its pieces) it lists; returns [(time, vtu dict)]."""
     try:
         root = ET.parse(path).getroot()
     except (ET.ParseError, OSError) as e:
@@ -235,7 +299,7 @@ def read_pvd(path, shape_check=True):
         if not os.path.isfile(full):
             raise CheckError(f"referenced file '{rel}' does not exist")
         try:
-            steps.append((time, read_vtu(full, shape_check)))
+            steps.append((time, read_grid(full, shape_check)))
         except CheckError as e:
             raise CheckError(f"{rel}: {e}") from None
     return steps
@@ -261,7 +325,7 @@ def _name_components(spec):
 
 def main(argv):
     ap = argparse.ArgumentParser(description="Check a .vtu or .pvd file independently of VTK.")
-    ap.add_argument("file", nargs="?", help=".vtu file to check")
+    ap.add_argument("file", nargs="?", help=".vtu (or .pvtu) file to check")
     ap.add_argument("--pvd", help=".pvd collection to check (every referenced .vtu must parse)")
     ap.add_argument("--expect-points", type=int)
     ap.add_argument("--expect-cells", type=int)
@@ -286,7 +350,7 @@ def main(argv):
                 for time, vtu in steps:
                     print(f"t = {time:g}: {summary(vtu)}")
             return 0
-        vtu = read_vtu(args.file, not args.no_shape_check)
+        vtu = read_grid(args.file, not args.no_shape_check)
         if args.expect_points is not None and len(vtu["points"]) != args.expect_points:
             raise CheckError(f"{len(vtu['points'])} points, expected {args.expect_points}")
         if args.expect_cells is not None and len(vtu["cells"]) != args.expect_cells:

@@ -20,7 +20,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
-from read_vtu import read_vtu  # noqa: E402
+from read_vtu import read_grid as read_vtu  # noqa: E402  (a .vtu, or a distributed run's .pvtu)
 
 
 def cells_of(path):
@@ -58,7 +58,7 @@ def main():
         if np.ptp(cen[:, 2]) > 0:  # 3D: one layer of cells
             z = args.slice if args.slice is not None else 0.5 * (cen[:, 2].min() + cen[:, 2].max())
             keep = np.abs(cen[:, 2] - z) <= 0.5 * size[:, 2] + 1e-12
-        inc = int(re.search(r"_(\d+)\.vtu$", path).group(1))
+        inc = int(re.search(r"_(\d+)\.p?vtu$", path).group(1))
         for i, (name, cmap) in enumerate((("alpha_mean", "viridis"), ("damage", "magma"))):
             top = 1.0 if i == 0 else max(1e-12, float(data[name].max()))  # damage: scaled to its largest value
             s = ax[i, j].scatter(cen[keep, 0], cen[keep, 1], c=data[name][keep], cmap=cmap, vmin=0, vmax=top,

@@ -22,7 +22,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
-from read_vtu import read_vtu  # noqa: E402
+from read_vtu import read_grid as read_vtu  # noqa: E402  (a .vtu, or a distributed run's .pvtu)
 
 
 

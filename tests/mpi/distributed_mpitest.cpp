@@ -22,6 +22,7 @@
 #include "support/cases.hpp"
 #include "support/dense_inserter.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <Eigen/Cholesky>
 
@@ -291,6 +292,60 @@ TEST(OnProcessZero, AnErrorOfProcessZeroStopsEveryProcess) {
     }
   } else {
     EXPECT_THROW(la::on_process_zero([] { throw std::runtime_error("other"); }), std::runtime_error);
+  }
+}
+
+// Every process's share of the output (its VTU piece): an error on any
+// process reaches the user once, from process 0, naming the process.
+TEST(OnEveryProcess, TheLowestFailingProcessIsReportedByProcessZero) {
+  const int rank = la::world_rank(), size = la::world_size();
+  int calls = 0;
+  la::on_every_process([&] { ++calls; });
+  EXPECT_EQ(calls, 1);
+  // Only the last process fails.
+  auto last_fails = [&] {
+    if (rank == size - 1) throw OutputError("disk full");
+  };
+  if (rank == 0) {
+    try {
+      la::on_every_process(last_fails);
+      ADD_FAILURE() << "no exception on process 0";
+    } catch (const StoppedByProcessZero&) {
+      ADD_FAILURE() << "process 0 must report, not be stopped";
+    } catch (const OutputError& e) {
+      EXPECT_EQ(std::string(e.what()),
+                size == 1 ? "disk full" : fmt::format("process {}: disk full", size - 1));
+    }
+  } else {
+    try {
+      la::on_every_process(last_fails);
+      ADD_FAILURE() << "no exception on process " << rank;
+    } catch (const StoppedByProcessZero& e) {
+      EXPECT_TRUE(e.output);
+    }
+  }
+  // Every process but 0 fails, each its own way: process 1's error is reported.
+  auto others_fail = [&] {
+    if (rank > 0) throw std::runtime_error(fmt::format("on {}", rank));
+  };
+  if (size == 1) {
+    EXPECT_NO_THROW(la::on_every_process(others_fail));
+  } else if (rank == 0) {
+    try {
+      la::on_every_process(others_fail);
+      ADD_FAILURE() << "no exception on process 0";
+    } catch (const OutputError&) {
+      ADD_FAILURE() << "not an output error";
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()), "process 1: on 1");
+    }
+  } else {
+    try {
+      la::on_every_process(others_fail);
+      ADD_FAILURE() << "no exception on process " << rank;
+    } catch (const StoppedByProcessZero& e) {
+      EXPECT_FALSE(e.output);
+    }
   }
 }
 

@@ -11,7 +11,7 @@ import numpy as np
 from .program import REPO
 
 sys.path.insert(0, os.path.join(REPO, "python"))
-from read_vtu import read_vtu  # noqa: E402  (shares no code with the program's writer)
+from read_vtu import read_grid  # noqa: E402  (shares no code with the program's writer)
 
 
 def read_csv(path):
@@ -101,11 +101,11 @@ def last_cells(pvd):
 def cells_at(pvd, increment):
     """Cells of the VTU of `increment` (file BASENAME_NNNN.vtu of the collection); KeyError if absent."""
     for _, path in pvd_files(pvd):
-        if path.endswith(f"_{increment:04d}.vtu"):
+        if path.endswith((f"_{increment:04d}.vtu", f"_{increment:04d}.pvtu")):
             return read_cells(path)
     raise KeyError(f"{pvd}: no VTU for increment {increment}")
 
 
 def read_cells(path):
-    """Cells of one VTU file."""
-    return Cells(read_vtu(path))
+    """Cells of one VTU file (or .pvtu: a distributed run's pieces)."""
+    return Cells(read_grid(path))

@@ -180,6 +180,47 @@ void on_process_zero(const std::function<void()>& act) {
   if (agreed != 0) throw StoppedByProcessZero(agreed == 1);
 }
 
+void on_every_process(const std::function<void()>& act) {
+  if (world_size() == 1) {
+    act();
+    return;
+  }
+  std::exception_ptr error;
+  int kind = 0;  // 1: an output error, 2: any other
+  std::string message;
+  try {
+    act();
+  } catch (const OutputError& e) {
+    error = std::current_exception();
+    kind = 1;
+    message = e.what();
+  } catch (const std::exception& e) {
+    error = std::current_exception();
+    kind = 2;
+    message = e.what();
+  } catch (...) {
+    error = std::current_exception();
+    kind = 2;
+    message = "unknown error";
+  }
+  const int size = world_size(), rank = world_rank();
+  const int mine = error ? rank : size;
+  int first = size;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
+  if (first == size) return;
+  // The lowest failing process tells every other what it met.
+  int length = static_cast<int>(message.size());
+  MPI_Bcast(&kind, 1, MPI_INT, first, PETSC_COMM_WORLD);
+  MPI_Bcast(&length, 1, MPI_INT, first, PETSC_COMM_WORLD);
+  message.resize(static_cast<std::size_t>(length));
+  MPI_Bcast(message.data(), length, MPI_CHAR, first, PETSC_COMM_WORLD);
+  if (rank != 0) throw StoppedByProcessZero(kind == 1);
+  if (first == 0) std::rethrow_exception(error);
+  const std::string reported = fmt::format("process {}: {}", first, message);
+  if (kind == 1) throw OutputError(reported);
+  throw Error(reported);
+}
+
 void set_option(const std::string& name, const std::string& value) {
   if (name.size() < 2 || name[0] != '-')
     throw InputError(fmt::format("PETSc option names must start with '-': got '{}'", name));

@@ -54,6 +54,15 @@ int max_over_processes(int value);
 /// process, `act()`.
 void on_process_zero(const std::function<void()>& act);
 
+/// Runs `act` on every process (each its own share of the output: its VTU
+/// piece) and lets every process know how it ended (collective). If it threw
+/// on any process, the error of the lowest such process is the one reported:
+/// process 0 throws it (its own exception, or an OutputError/Error with that
+/// process's message, prefixed "process R: "), every other process throws
+/// StoppedByProcessZero, so that the error reaches the user once (issue 17,
+/// item 3). On one process, `act()`.
+void on_every_process(const std::function<void()>& act);
+
 /// Sets one option ("-ksp_type", "preonly"), replacing any value it had, the
 /// command line's included; an empty value sets a flag. For programs that
 /// change solvers between runs (benchmarks); case files use add_options.

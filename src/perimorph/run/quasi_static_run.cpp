@@ -303,14 +303,10 @@ void QuasiStaticRun::record(bool force_vtu) {
 
 void QuasiStaticRun::write_vtu(int increment, bool listed_by_row) {
   if (!output_->writes_vtu()) return;
-  // Process 0 writes it, the fields computed there only; every process
-  // learns whether it could.
-  la::on_process_zero([&] {
-    output_->write_increment_vtu(*disc_, increment, state_.load_factor, state_.u,
-                                 fracture_ ? fracture_->fields(state_) : evolution::FractureFields{},
-                                 damage_ ? damage_->fields(state_) : evolution::DamageFields{},
-                                 listed_by_row);
-  });
+  // Collective on several processes: each writes its piece (RunOutput).
+  output_->write_increment_vtu(*disc_, increment, state_.load_factor, state_.u,
+                               fracture_ ? fracture_->fields(state_) : evolution::FractureFields{},
+                               damage_ ? damage_->fields(state_) : evolution::DamageFields{}, listed_by_row);
 }
 
 void QuasiStaticRun::write_increment() {

@@ -2,8 +2,10 @@
 
 #include "perimorph/core/error.hpp"
 #include "perimorph/io/grid.hpp"
+#include "perimorph/io/pvtu_writer.hpp"
 #include "perimorph/io/vtu_writer.hpp"
 #include "perimorph/la/petsc_session.hpp"
+#include "perimorph/partition/partition.hpp"
 
 #include <fmt/format.h>
 
@@ -128,16 +130,17 @@ std::string RunOutput::pvd_path() const {
   return (std::filesystem::path(directory_) / (basename_ + ".pvd")).string();
 }
 std::string RunOutput::vtu_path(int increment) const {
-  return (std::filesystem::path(directory_) / fmt::format("{}_{:04d}.vtu", basename_, increment)).string();
+  return (std::filesystem::path(directory_) /
+          fmt::format("{}_{:04d}.{}", basename_, increment, la::world_size() == 1 ? "vtu" : "pvtu"))
+      .string();
 }
 std::string RunOutput::failures_csv_path() const {
   return fracture_ ? (std::filesystem::path(directory_) / (basename_ + "_failures.csv")).string() : "";
 }
 
-void RunOutput::write_increment_vtu(const setup::Discretization& model, int increment, double load_factor,
-                                    std::span<const double> u, const evolution::FractureFields& fracture,
-                                    const evolution::DamageFields& damage, bool listed_by_row) {
-  if (!pvd_) return;
+io::UnstructuredGrid RunOutput::increment_grid(const setup::Discretization& model, std::span<const double> u,
+                                               const evolution::FractureFields& fracture,
+                                               const evolution::DamageFields& damage) const {
   const auto& dm = model.dofmap;
   io::UnstructuredGrid grid;
   grid.points = dm.node_coordinates();
@@ -217,13 +220,62 @@ void RunOutput::write_increment_vtu(const setup::Discretization& model, int incr
     grid.cell_data.push_back({"local_damage_max", 1, damage.max});
     grid.cell_data.push_back({"damage_dissipated_energy", 1, damage.dissipated});
   }
+  return grid;
+}
 
-  io::write_vtu(vtu_path(increment), grid);
-  const std::string name = std::filesystem::path(vtu_path(increment)).filename().string();
-  if (listed_by_row)
-    unlisted_ = io::PvdCollection::Entry{load_factor, name};
-  else
-    pvd_->add(load_factor, name);
+void RunOutput::write_increment_vtu(const setup::Discretization& model, int increment, double load_factor,
+                                    std::span<const double> u, const evolution::FractureFields& fracture,
+                                    const evolution::DamageFields& damage, bool listed_by_row) {
+  if (!vtu_) return;
+  io::UnstructuredGrid grid = increment_grid(model, u, fracture, damage);
+  const int processes = la::world_size();
+  if (processes == 1) {
+    io::write_vtu(vtu_path(increment), grid);
+  } else {
+    // Each process writes the cells of its part (the bisection of the
+    // stretch pass), each tagged with its number in the whole mesh; then
+    // process 0 the index. A failure anywhere removes every process's piece.
+    io::Field cell{"cell", 1, {}};
+    for (Index c = 0; c < model.dofmap.num_cells(); ++c) cell.values.push_back(static_cast<double>(c));
+    grid.cell_data.push_back(std::move(cell));
+    if (piece_cells_.empty())
+      piece_cells_ = partition::cells_of_part(model.mesh, processes, la::world_rank());
+    const std::string stem = fmt::format("{}_{:04d}", basename_, increment);
+    const std::string mine =
+        (std::filesystem::path(directory_) / piece_name(stem, la::world_rank())).string();
+    try {
+      la::on_every_process([&] { io::write_vtu(mine, io::grid_piece(grid, piece_cells_)); });
+      la::on_process_zero([&] {
+        std::vector<std::string> pieces;
+        for (int r = 0; r < processes; ++r) pieces.push_back(piece_name(stem, r));
+        io::write_pvtu(vtu_path(increment), grid, pieces);
+      });
+    } catch (...) {
+      std::error_code ec;
+      std::filesystem::remove(mine, ec);
+      throw;
+    }
+  }
+  la::on_process_zero([&] {
+    const std::string name = std::filesystem::path(vtu_path(increment)).filename().string();
+    if (listed_by_row)
+      unlisted_ = io::PvdCollection::Entry{load_factor, name};
+    else
+      pvd_->add(load_factor, name);
+  });
+}
+
+std::string RunOutput::piece_name(const std::string& stem, int process) {
+  return fmt::format("{}_p{}.vtu", stem, process);
+}
+
+void RunOutput::remove_increment_files(const std::string& file) const {
+  const std::filesystem::path path = std::filesystem::path(directory_) / file;
+  std::error_code ec;
+  std::filesystem::remove(path, ec);
+  if (path.extension() == ".pvtu")
+    for (int r = 0; r < la::world_size(); ++r)
+      std::filesystem::remove(std::filesystem::path(directory_) / piece_name(path.stem().string(), r), ec);
 }
 
 void RunOutput::add_row(const IncrementRecord& r) {
@@ -253,8 +305,7 @@ void RunOutput::add_row(const IncrementRecord& r) {
                              r.model_change, r.remodel_seconds});
     const auto unlisted = std::exchange(unlisted_, std::nullopt);
     auto remove_vtu = [&] {
-      std::error_code ec;
-      if (unlisted) std::filesystem::remove(std::filesystem::path(directory_) / unlisted->file, ec);
+      if (unlisted) remove_increment_files(unlisted->file);
     };
     try {
       csv_->add_row(row);

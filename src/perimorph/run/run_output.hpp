@@ -8,6 +8,7 @@
 #include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/evolution/local_damage.hpp"
 #include "perimorph/io/csv_table.hpp"
+#include "perimorph/io/grid.hpp"
 #include "perimorph/io/output_lock.hpp"
 #include "perimorph/io/pvd_writer.hpp"
 #include "perimorph/la/linear_solver.hpp"
@@ -78,9 +79,12 @@ class RunOutput {
   OutputPosition position() const;
 
   /// Writes the increment's VTU and lists it in the PVD; with `listed_by_row`
-  /// the PVD entry waits for add_row (below). Not collective: on several
-  /// processes, call it on process 0 alone through la::on_process_zero (the
-  /// fields it takes are computed there only; elsewhere it does nothing).
+  /// the PVD entry waits for add_row (below). On P > 1 processes collective:
+  /// each process writes the cells of its part (partition::cells_of_part) as
+  /// BASENAME_NNNN_pR.vtu, with a cell array `cell` (the cell's number in the
+  /// whole mesh), and process 0 the index BASENAME_NNNN.pvtu listed in the
+  /// PVD (issue 17, item 3); an error on any process stops every process
+  /// (la::on_every_process) and leaves no piece of that increment.
   void write_increment_vtu(const setup::Discretization& model, int increment, double load_factor,
                            std::span<const double> u, const evolution::FractureFields& fracture = {},
                            const evolution::DamageFields& damage = {}, bool listed_by_row = false);
@@ -110,7 +114,8 @@ class RunOutput {
   const std::string& directory() const { return directory_; }
   std::string csv_path() const;
   std::string pvd_path() const;
-  /// The VTU of an increment (written or not: [output] vtu may be false).
+  /// The VTU of an increment (written or not: [output] vtu may be false);
+  /// on several processes its .pvtu index.
   std::string vtu_path(int increment) const;
   /// BASENAME_failures.csv ("" for a run without [fracture]).
   std::string failures_csv_path() const;
@@ -126,6 +131,16 @@ class RunOutput {
   /// A VTU written with listed_by_row, waiting for its row: time and file name.
   std::optional<io::PvdCollection::Entry> unlisted_;
   std::unique_ptr<io::PvdCollection> pvd_;
+  /// This process's cells in a distributed run's VTU pieces (empty until the first).
+  std::vector<char> piece_cells_;
+
+  io::UnstructuredGrid increment_grid(const setup::Discretization& model, std::span<const double> u,
+                                      const evolution::FractureFields& fracture,
+                                      const evolution::DamageFields& damage) const;
+  /// The VTU piece of process `process` of the increment file STEM.pvtu.
+  static std::string piece_name(const std::string& stem, int process);
+  /// Removes an increment's VTU, or its .pvtu and every process's piece.
+  void remove_increment_files(const std::string& file) const;
 };
 
 }  // namespace perimorph::run
