@@ -170,6 +170,32 @@ TEST(DistributedShell, GetsTheWholeXAndKeepsTheOwnedRowsOfY) {
   x.assign_replicated(xv);
   A.mult(x, y);
   EXPECT_EQ(y.to_replicated(), expected);
+
+  // With the nodes it reads named (the halo), a process receives those
+  // entries only, and sees 0 elsewhere: the same product.
+  const Index dim = m.dim(), nodes = m.dofmap.num_nodes();
+  std::vector<Index> reads;
+  for (Index node = 0; node < nodes; ++node)
+    if (d->owns(node) || d->owns(nodes - 1 - node)) reads.push_back(node);
+  std::vector<char> is_read(static_cast<std::size_t>(nodes), 0);
+  for (Index node : reads) is_read[static_cast<std::size_t>(node)] = 1;
+  la::ShellMatrix H(
+      d, m.dim(),
+      [&](std::span<const double> xs, std::span<double> ys) {
+        for (std::size_t i = 0; i < n; ++i) {
+          const Index node = static_cast<Index>(i) / dim;
+          EXPECT_EQ(xs[i], is_read[static_cast<std::size_t>(node)] ? xv[i] : 0.0) << "entry " << i;
+          if (d->owns(node)) ys[i] = static_cast<double>(i) * xs[i] + xs[n - 1 - i];
+        }
+      },
+      reads);
+  la::Vector z(d, m.dim());
+  H.mult(x, z);
+  EXPECT_EQ(z.to_replicated(), expected);
+  Index others = 0;
+  for (Index node : reads) others += d->owns(node) ? 0 : dim;
+  EXPECT_EQ(H.received_per_product(), others);
+  EXPECT_EQ(A.received_per_product(), la::world_size() == 1 ? 0 : (nodes - d->owned_nodes()) * dim);
 }
 
 // A checkpoint's matrix (run/checkpoint.hpp) does not depend on the number of

@@ -139,6 +139,22 @@ void for_each_neighbour(const std::vector<std::array<int, 3>>& offsets, std::arr
 
 }  // namespace
 
+std::vector<Index> StructuredNonlocalOperator::nodes_read(std::span<const char> cells) const {
+  const Index total = n_[0] * n_[1] * n_[2];
+  std::vector<char> read(static_cast<std::size_t>(total), 0);
+  for (Index c = 0; c < total; ++c) {
+    if (cells[static_cast<std::size_t>(c)] == 0) continue;
+    read[static_cast<std::size_t>(c)] = 1;
+    for_each_neighbour(b_.offsets, n_, c,
+                       [&](std::size_t, Index f) { read[static_cast<std::size_t>(f)] = 1; });
+  }
+  std::vector<Index> nodes;
+  for (Index c = 0; c < total; ++c)
+    if (read[static_cast<std::size_t>(c)]) nodes.push_back(node_[static_cast<std::size_t>(c)]);
+  std::sort(nodes.begin(), nodes.end());
+  return nodes;
+}
+
 SparsityPattern StructuredNonlocalOperator::sparsity() const {
   const Index total = n_[0] * n_[1] * n_[2];
   std::vector<std::vector<Index>> rows(static_cast<std::size_t>(total));

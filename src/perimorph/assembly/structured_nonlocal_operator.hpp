@@ -44,6 +44,10 @@ class StructuredNonlocalOperator {
   /// process's own rows; x must hold every cell's values).
   void apply(std::span<const double> x, std::span<double> y, std::span<const char> cells = {}) const;
   std::size_t offsets() const { return b_.offsets.size(); }
+  /// The dof nodes whose values apply(x, y, cells) reads: those of the
+  /// flagged cells and of their neighbours at the offsets (a process's halo
+  /// of the bond reach), ascending.
+  std::vector<Index> nodes_read(std::span<const char> cells) const;
   /// The pattern of K: each cell with itself and its neighbours at the
   /// offsets (block size dim), exact for the bonds (the cell graph's pattern
   /// holds every pair of cells within the horizon of each other's boxes).

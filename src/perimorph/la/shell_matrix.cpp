@@ -15,12 +15,13 @@ struct ShellMatrix::Context {
   Apply apply;
   std::shared_ptr<const Distribution> distribution;  ///< null on one process
   int block_size = 1;
-  VecScatter to_all = nullptr;  ///< x → every process (distributed numbering)
-  Vec all = nullptr;
+  std::vector<Index> reads;     ///< nodes read (assembly numbering); empty: all
+  VecScatter gather = nullptr;  ///< x → this process: its halo, or all of x (distributed numbering)
+  Vec gathered = nullptr;
   std::vector<double> x, y;  ///< whole, assembly numbering
   ~Context() {
-    if (to_all) VecScatterDestroy(&to_all);
-    if (all) VecDestroy(&all);
+    if (gather) VecScatterDestroy(&gather);
+    if (gathered) VecDestroy(&gathered);
   }
 };
 
@@ -45,19 +46,39 @@ PetscErrorCode shell_mult(Mat A, Vec x, Vec y) {
   }
   const Distribution& d = *c.distribution;
   const Index bs = c.block_size;
-  if (!c.to_all) PetscCall(VecScatterCreateToAll(x, &c.to_all, &c.all));
-  PetscCall(VecScatterBegin(c.to_all, x, c.all, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(c.to_all, x, c.all, INSERT_VALUES, SCATTER_FORWARD));
-  const PetscScalar* xa = nullptr;
-  PetscCall(VecGetArrayRead(c.all, &xa));
   const auto n = static_cast<std::size_t>(d.num_nodes() * bs);
-  c.x.resize(n);
+  if (!c.gather) {
+    c.x.assign(n, 0.0);  // entries outside the halo stay 0: never read
+    if (c.reads.empty()) {
+      PetscCall(VecScatterCreateToAll(x, &c.gather, &c.gathered));
+    } else {
+      std::vector<PetscInt> blocks(c.reads.size());
+      for (std::size_t i = 0; i < c.reads.size(); ++i)
+        blocks[i] = d.to_distributed[static_cast<std::size_t>(c.reads[i])];
+      IS from = nullptr;
+      PetscCall(ISCreateBlock(PETSC_COMM_SELF, bs, static_cast<PetscInt>(blocks.size()), blocks.data(),
+                              PETSC_COPY_VALUES, &from));
+      PetscCall(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(blocks.size()) * bs, &c.gathered));
+      PetscCall(VecScatterCreate(x, from, c.gathered, nullptr, &c.gather));
+      PetscCall(ISDestroy(&from));
+    }
+  }
+  PetscCall(VecScatterBegin(c.gather, x, c.gathered, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(c.gather, x, c.gathered, INSERT_VALUES, SCATTER_FORWARD));
+  const PetscScalar* xa = nullptr;
+  PetscCall(VecGetArrayRead(c.gathered, &xa));
   c.y.assign(n, 0.0);
-  for (Index node = 0; node < d.num_nodes(); ++node)
-    for (Index k = 0; k < bs; ++k)
-      c.x[static_cast<std::size_t>(node * bs + k)] =
-          xa[d.to_distributed[static_cast<std::size_t>(node)] * bs + k];
-  PetscCall(VecRestoreArrayRead(c.all, &xa));
+  if (c.reads.empty()) {
+    for (Index node = 0; node < d.num_nodes(); ++node)
+      for (Index k = 0; k < bs; ++k)
+        c.x[static_cast<std::size_t>(node * bs + k)] =
+            xa[d.to_distributed[static_cast<std::size_t>(node)] * bs + k];
+  } else {
+    for (std::size_t i = 0; i < c.reads.size(); ++i)
+      for (Index k = 0; k < bs; ++k)
+        c.x[static_cast<std::size_t>(c.reads[i] * bs + k)] = xa[static_cast<Index>(i) * bs + k];
+  }
+  PetscCall(VecRestoreArrayRead(c.gathered, &xa));
   c.apply(c.x, c.y);
   PetscScalar* ya = nullptr;
   PetscCall(VecGetArrayWrite(y, &ya));
@@ -73,17 +94,20 @@ PetscErrorCode shell_mult(Mat A, Vec x, Vec y) {
 }  // namespace
 
 ShellMatrix::ShellMatrix(Index size, int block_size, Apply apply)
-    : ShellMatrix(nullptr, block_size, std::move(apply), size) {}
-
-ShellMatrix::ShellMatrix(std::shared_ptr<const Distribution> distribution, int block_size, Apply apply)
-    : ShellMatrix(distribution, block_size, std::move(apply), distribution->num_nodes() * block_size) {}
+    : ShellMatrix(nullptr, block_size, std::move(apply), size, {}) {}
 
 ShellMatrix::ShellMatrix(std::shared_ptr<const Distribution> distribution, int block_size, Apply apply,
-                         Index size)
+                         std::vector<Index> reads)
+    : ShellMatrix(distribution, block_size, std::move(apply), distribution->num_nodes() * block_size,
+                  std::move(reads)) {}
+
+ShellMatrix::ShellMatrix(std::shared_ptr<const Distribution> distribution, int block_size, Apply apply,
+                         Index size, std::vector<Index> reads)
     : size_(size), context_(std::make_unique<Context>()) {
   context_->apply = std::move(apply);
   context_->distribution = std::move(distribution);
   context_->block_size = block_size;
+  context_->reads = std::move(reads);
   const Index local = context_->distribution ? context_->distribution->owned_nodes() * block_size : size;
   PM_PETSC(MatCreateShell(PETSC_COMM_WORLD, local, local, size, size, context_.get(), &m_));
   PM_PETSC(MatSetBlockSize(m_, block_size));
@@ -106,6 +130,16 @@ ShellMatrix& ShellMatrix::operator=(ShellMatrix&& other) noexcept {
     context_ = std::move(other.context_);
   }
   return *this;
+}
+
+Index ShellMatrix::received_per_product() const {
+  const auto& c = *context_;
+  if (!c.distribution) return 0;
+  const Distribution& d = *c.distribution;
+  if (c.reads.empty()) return (d.num_nodes() - d.owned_nodes()) * c.block_size;
+  Index others = 0;
+  for (Index node : c.reads) others += d.owns(node) ? 0 : 1;
+  return others * c.block_size;
 }
 
 void ShellMatrix::mult(const Vector& x, Vector& y) const {

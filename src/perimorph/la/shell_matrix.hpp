@@ -14,6 +14,7 @@
 #include <functional>
 #include <memory>
 #include <span>
+#include <vector>
 
 namespace perimorph::la {
 
@@ -25,10 +26,17 @@ class ShellMatrix {
 
   ShellMatrix(Index size, int block_size, Apply apply);
   /// Spread over the processes by `distribution` (dof nodes of `block_size`
-  /// entries): `apply` gets the whole x in the assembly's numbering (gathered
-  /// from every process before each product) and must write the rows this
-  /// process owns of y (whole length, assembly numbering; the rest is ignored).
-  ShellMatrix(std::shared_ptr<const Distribution> distribution, int block_size, Apply apply);
+  /// entries): `apply` gets x whole in the assembly's numbering and must write
+  /// the rows this process owns of y (whole length, assembly numbering; the
+  /// rest is ignored). Before each product the entries of x at `reads` (the
+  /// nodes apply reads for its rows, assembly numbering: the halo) are brought
+  /// from their owners, and only those: x is 0 elsewhere. With `reads` empty,
+  /// all of x is gathered on every process.
+  ShellMatrix(std::shared_ptr<const Distribution> distribution, int block_size, Apply apply,
+              std::vector<Index> reads = {});
+  /// Entries of x this process receives from others before each product
+  /// (0 on one process).
+  Index received_per_product() const;
   ~ShellMatrix();
   ShellMatrix(ShellMatrix&& other) noexcept;
   ShellMatrix& operator=(ShellMatrix&& other) noexcept;
@@ -45,7 +53,8 @@ class ShellMatrix {
 
  private:
   /// Both constructors: `size` rows, `distribution` null on one process.
-  ShellMatrix(std::shared_ptr<const Distribution> distribution, int block_size, Apply apply, Index size);
+  ShellMatrix(std::shared_ptr<const Distribution> distribution, int block_size, Apply apply, Index size,
+              std::vector<Index> reads);
   PetscMatHandle m_ = nullptr;
   Index size_ = 0;
   std::unique_ptr<Context> context_;  ///< the shell's context: a stable address

@@ -30,8 +30,9 @@ struct ConstrainedSystem::MatrixFree {
         })) {}
   /// A shell laid out as the preconditioner (spread over the processes with it, or serial).
   la::ShellMatrix shell(int dim, la::ShellMatrix::Apply apply) const {
+    // Each process receives the bond reach of its cells (the halo), not all of x.
     if (const auto& d = stiffness.preconditioner.distribution())
-      return la::ShellMatrix(d, dim, std::move(apply));
+      return la::ShellMatrix(d, dim, std::move(apply), stiffness.K.nodes_read(stiffness.owned_cells));
     return la::ShellMatrix(static_cast<Index>(fixed.size()), dim, std::move(apply));
   }
   MatrixFreeStiffness stiffness;  ///< its preconditioner constrained in place
