@@ -71,7 +71,7 @@ cmp \"$4.info1\" \"$4.info2\"; cmp \"$4.gc1\" \"$4.gc2\"; grep -c 'G_c =' \"$4.g
   # (compare_distributed.py; the failed-bond lists too: the same bonds, in the
   # same order): 1e-7 for the Krylov solves (rtol 1e-10 bounds the residual;
   # the error may be larger by the condition number, and a parallel
-  # preconditioner takes other iterates), 1e-10 for the direct ones (MUMPS
+  # preconditioner takes other iterates), 1e-10 for the direct ones (SuperLU_DIST
   # distributed against PETSc's serial Cholesky, CHOLMOD or MUMPS: round-off),
   # 1e-8 for B6 (CG with a kept factor, rtol 1e-12). Elastic: plate_tension,
   # b2, b1, P4 at N = 20 (matrix-free, rtol 1e-8); bond failure: the fracture
@@ -122,6 +122,21 @@ for d in two two_then_one one_then_two; do /usr/bin/python3 \"$3\" \"$4/one\" \"
     PASS_REGULAR_EXPRESSION "continuing after increment 25 of 30.*continuing after increment 25 of 30.*tolerance 1e-10: ok.*tolerance 1e-10: ok.*tolerance 1e-10: ok.*files compared, 0 differ"
     FAIL_REGULAR_EXPRESSION "differences|missing in"
     TIMEOUT 300)
+
+  # Run after run the same bits on 2 processes (a threshold model amplifies
+  # round-off): the flagship, whose factorization (CG + a kept Cholesky factor,
+  # SuperLU_DIST's on several processes) MUMPS made differ at round-off from
+  # increment 18 in every pair of runs (its dynamic scheduling;
+  # docs/benchmarks/distributed-runs.md).
+  set(out ${CMAKE_CURRENT_BINARY_DIR}/cli_output/mpi_run_twice)
+  add_test(NAME cli_mpi_two_runs_give_the_same_bits
+    COMMAND sh -c "set -e; rm -rf \"$3\"; for r in a b; do \"$0\" -n 2 \"$1\" run \"$2\" -o \"$3/$r\" --quiet; done; \
+/usr/bin/python3 \"$4\" \"$3/a\" \"$3/b\""
+            ${MPIEXEC_EXECUTABLE} $<TARGET_FILE:perimorph_cli> ${PROJECT_SOURCE_DIR}/examples/hole_plate_2d/case.toml
+            ${out} ${CMAKE_CURRENT_SOURCE_DIR}/cli/compare_runs.py)
+  set_tests_properties(cli_mpi_two_runs_give_the_same_bits PROPERTIES
+    ENVIRONMENT "${PM_MPI_ENV};OMP_NUM_THREADS=1"
+    PASS_REGULAR_EXPRESSION "files compared, 0 differ" TIMEOUT 300)
 
   foreach(ranks 1 2 3)
     add_test(NAME mpi_distributed_assembly_and_solve_${ranks}_ranks

@@ -114,7 +114,7 @@ fem::ElementVector<D> gather(const dofs::DofMap& dofmap, Index c, std::span<cons
 
 template <int D>
 CellFields cell_strain_stress_dim(const LocalSpace& s, const fem::ConstitutiveField& C,
-                                  std::span<const double> u) {
+                                  std::span<const double> u, std::span<const char> cells) {
   constexpr int nv = fem::voigt_dim<D>;
   const Index ncells = s.mesh.num_cells();
   CellFields out;
@@ -123,6 +123,7 @@ CellFields cell_strain_stress_dim(const LocalSpace& s, const fem::ConstitutiveFi
   out.energy_density.assign(static_cast<std::size_t>(ncells), 0.0);
 #pragma omp parallel for schedule(static)
   for (Index c = 0; c < ncells; ++c) {
+    if (!cells.empty() && cells[static_cast<std::size_t>(c)] == 0) continue;
     // DG degree 0 cells have no strain of their own (constant displacement): left 0.
     if (static_cast<int>(s.dofmap.cell_nodes(c).size()) != fem::q1_nodes<D>) continue;
     const auto X = cell_coordinates<D>(s.mesh, c);
@@ -195,8 +196,9 @@ void assemble_traction(const LocalSpace& space, std::span<const mesh::CellFace> 
 }
 
 CellFields cell_strain_stress(const LocalSpace& space, const fem::ConstitutiveField& C,
-                              std::span<const double> u) {
-  return dispatch_dim(space.mesh.dim(), [&](auto D) { return cell_strain_stress_dim<D()>(space, C, u); });
+                              std::span<const double> u, std::span<const char> cells) {
+  return dispatch_dim(space.mesh.dim(),
+                      [&](auto D) { return cell_strain_stress_dim<D()>(space, C, u, cells); });
 }
 
 std::vector<double> strain_at(const LocalSpace& space, Index c, const Vec3& xi, std::span<const double> u) {

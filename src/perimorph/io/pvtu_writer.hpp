@@ -20,10 +20,4 @@ namespace perimorph::io {
 /// perimorph::Error if the file cannot be written.
 void write_pvtu(const std::string& path, const UnstructuredGrid& layout, std::span<const std::string> pieces);
 
-/// The piece of `whole` made of the cells marked in `cells` (one flag per
-/// cell of `whole`), in their order, with the points they use in ascending
-/// order of their index in `whole` and every field restricted to them.
-/// Throws std::logic_error if `cells` does not have one flag per cell.
-UnstructuredGrid grid_piece(const UnstructuredGrid& whole, std::span<const char> cells);
-
 }  // namespace perimorph::io

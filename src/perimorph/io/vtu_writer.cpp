@@ -173,10 +173,16 @@ std::size_t validate(const UnstructuredGrid& g) {
   return num_cells;
 }
 
+/// The arrays of `fields`, each handed to `flush` once encoded: one array's
+/// encoding in memory at a time.
+template <class Flush>
 void append_fields(std::string& out, std::string_view tag, const std::vector<Field>& fields,
-                   VtuEncoding encoding) {
+                   VtuEncoding encoding, Flush&& flush) {
   fmt::format_to(std::back_inserter(out), "      <{}>\n", tag);
-  for (const Field& f : fields) append_data_array<double>(out, 8, f.name, f.components, f.values, encoding);
+  for (const Field& f : fields) {
+    append_data_array<double>(out, 8, f.name, f.components, f.values, encoding);
+    flush();
+  }
   fmt::format_to(std::back_inserter(out), "      </{}>\n", tag);
 }
 
@@ -212,10 +218,8 @@ void write_vtu(const std::string& path, const UnstructuredGrid& grid, VtuEncodin
   out += "  <UnstructuredGrid>\n";
   fmt::format_to(std::back_inserter(out), "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
                  num_points, num_cells);
-  append_fields(out, "PointData", grid.point_data, encoding);
-  flush();
-  append_fields(out, "CellData", grid.cell_data, encoding);
-  flush();
+  append_fields(out, "PointData", grid.point_data, encoding, flush);
+  append_fields(out, "CellData", grid.cell_data, encoding, flush);
 
   {
     std::vector<double> xyz;

@@ -20,8 +20,11 @@ LinearSolver::LinearSolver(double rtol, int max_iterations) : rtol_(rtol) {
   PM_PETSC(KSPSetTolerances(ksp_, rtol, PETSC_DEFAULT, PETSC_DEFAULT, max_iterations));
   PM_PETSC(KSPSetFromOptions(ksp_));
   // On more than one process a factorization must be a distributed one:
-  // PETSc's own and CHOLMOD's are sequential, so MUMPS takes over from them
-  // (the report's pc_type names it).
+  // PETSc's own and CHOLMOD's are sequential, so SuperLU_DIST takes over from
+  // them (the report's pc_type names it): its static schedule gives the same
+  // bits run after run, where MUMPS' dynamic one does not (the flagship on 2
+  // processes: every two MUMPS runs part at round-off from increment 18;
+  // docs/benchmarks/distributed-runs.md). MUMPS when the options name it.
   PCType type = nullptr;
   PM_PETSC(PCGetType(pc, &type));
   if (world_size() > 1 && type != nullptr &&
@@ -30,7 +33,7 @@ LinearSolver::LinearSolver(double rtol, int max_iterations) : rtol_(rtol) {
     PM_PETSC(PCFactorGetMatSolverType(pc, &solver));
     if (solver == nullptr ||
         (std::strcmp(solver, MATSOLVERMUMPS) != 0 && std::strcmp(solver, MATSOLVERSUPERLU_DIST) != 0))
-      PM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+      PM_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERSUPERLU_DIST));
     // MUMPS' workspace estimate after its parallel analysis can fall short
     // (INFO(1) = −9: on 3 processes for the hole plate's first factor, with
     // the default 20 % margin); 50 % unless the options say otherwise.

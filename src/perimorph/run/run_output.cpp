@@ -140,20 +140,34 @@ std::string RunOutput::failures_csv_path() const {
 
 io::UnstructuredGrid RunOutput::increment_grid(const setup::Discretization& model, std::span<const double> u,
                                                const evolution::FractureFields& fracture,
-                                               const evolution::DamageFields& damage) const {
+                                               const evolution::DamageFields& damage,
+                                               std::span<const char> selected) const {
   const auto& dm = model.dofmap;
+  std::vector<Index> cells;
+  for (Index c = 0; c < dm.num_cells(); ++c)
+    if (selected.empty() || selected[static_cast<std::size_t>(c)]) cells.push_back(c);
   io::UnstructuredGrid grid;
-  grid.points = dm.node_coordinates();
   grid.nodes_per_cell = model.mesh.nodes_per_cell();
   grid.cell_type = vtk_cell(dim_);
-  // Points are the dof nodes; a DG degree 0 cell is drawn with its own corner
-  // points, all carrying the displacement of its centroid node.
-  std::vector<Index> point_dof_node(static_cast<std::size_t>(dm.num_nodes()));
-  for (Index n = 0; n < dm.num_nodes(); ++n) point_dof_node[static_cast<std::size_t>(n)] = n;
-  for (Index c = 0; c < dm.num_cells(); ++c) {
+  // Points are the dof nodes (those of the cells written, ascending); a DG
+  // degree 0 cell is drawn with its own corner points, all carrying the
+  // displacement of its centroid node.
+  constexpr Index unused = -1;
+  std::vector<Index> point_of_node(static_cast<std::size_t>(dm.num_nodes()), selected.empty() ? 0 : unused);
+  for (Index c : cells)
+    for (Index n : dm.cell_nodes(c)) point_of_node[static_cast<std::size_t>(n)] = 0;
+  std::vector<Index> point_dof_node;
+  const std::vector<Vec3> coordinates = dm.node_coordinates();
+  for (Index n = 0; n < dm.num_nodes(); ++n) {
+    if (point_of_node[static_cast<std::size_t>(n)] == unused) continue;
+    point_of_node[static_cast<std::size_t>(n)] = static_cast<Index>(point_dof_node.size());
+    point_dof_node.push_back(n);
+    grid.points.push_back(coordinates[static_cast<std::size_t>(n)]);
+  }
+  for (Index c : cells) {
     const auto nodes = dm.cell_nodes(c);
     if (static_cast<int>(nodes.size()) == grid.nodes_per_cell) {
-      grid.connectivity.insert(grid.connectivity.end(), nodes.begin(), nodes.end());
+      for (Index n : nodes) grid.connectivity.push_back(point_of_node[static_cast<std::size_t>(n)]);
       continue;
     }
     for (Index corner : model.mesh.cell(c)) {
@@ -180,12 +194,12 @@ io::UnstructuredGrid RunOutput::increment_grid(const setup::Discretization& mode
       model.damage && !damage.history.empty()
           ? setup::damaged_stiffness(model.stiffness, *model.damage, damage.history)
           : fem::ConstitutiveField(0, 0, 0);
-  const auto fields = assembly::cell_strain_stress(model.local_space(),
-                                                   damage.history.empty() ? model.stiffness : damaged, u);
+  const auto fields = assembly::cell_strain_stress(
+      model.local_space(), damage.history.empty() ? model.stiffness : damaged, u, selected);
   const int nv = fem::voigt_size(dim_);
   io::Field strain{"strain", 9, {}}, stress{"stress", 9, {}}, region{"region", 1, {}},
       energy{"strain_energy_density", 1, {}};
-  for (Index c = 0; c < dm.num_cells(); ++c) {
+  for (Index c : cells) {
     const auto e = voigt_to_tensor(&fields.strain[static_cast<std::size_t>(c * nv)], dim_, true);
     const auto s = voigt_to_tensor(&fields.stress[static_cast<std::size_t>(c * nv)], dim_, false);
     strain.values.insert(strain.values.end(), e.begin(), e.end());
@@ -200,7 +214,7 @@ io::UnstructuredGrid RunOutput::increment_grid(const setup::Discretization& mode
     const auto& nl = *model.nonlocal;
     const std::size_t nq = model.rule.size();
     io::Field alpha_cell{"alpha_mean", 1, {}}, kind{"element_kind", 1, {}};
-    for (Index c = 0; c < dm.num_cells(); ++c) {
+    for (Index c : cells) {
       double a = 0.0;
       for (std::size_t q = 0; q < nq; ++q) a += nl.morph.alpha[static_cast<std::size_t>(c) * nq + q];
       alpha_cell.values.push_back(a / static_cast<double>(nq));
@@ -213,12 +227,23 @@ io::UnstructuredGrid RunOutput::increment_grid(const setup::Discretization& mode
     grid.cell_data.push_back(std::move(alpha_cell));
     grid.cell_data.push_back(std::move(kind));
   }
-  if (!fracture.damage.empty()) grid.cell_data.push_back({"damage", 1, fracture.damage});
-  if (!fracture.dissipated.empty()) grid.cell_data.push_back({"dissipated_energy", 1, fracture.dissipated});
+  auto cell_field = [&](const char* name, const std::vector<double>& whole) {
+    io::Field f{name, 1, {}};
+    for (Index c : cells) f.values.push_back(whole[static_cast<std::size_t>(c)]);
+    grid.cell_data.push_back(std::move(f));
+  };
+  if (!fracture.damage.empty()) cell_field("damage", fracture.damage);
+  if (!fracture.dissipated.empty()) cell_field("dissipated_energy", fracture.dissipated);
   if (!damage.mean.empty()) {
-    grid.cell_data.push_back({"local_damage", 1, damage.mean});
-    grid.cell_data.push_back({"local_damage_max", 1, damage.max});
-    grid.cell_data.push_back({"damage_dissipated_energy", 1, damage.dissipated});
+    cell_field("local_damage", damage.mean);
+    cell_field("local_damage_max", damage.max);
+    cell_field("damage_dissipated_energy", damage.dissipated);
+  }
+  if (!selected.empty()) {
+    // A piece: each cell's number in the whole mesh.
+    io::Field number{"cell", 1, {}};
+    for (Index c : cells) number.values.push_back(static_cast<double>(c));
+    grid.cell_data.push_back(std::move(number));
   }
   return grid;
 }
@@ -227,28 +252,28 @@ void RunOutput::write_increment_vtu(const setup::Discretization& model, int incr
                                     std::span<const double> u, const evolution::FractureFields& fracture,
                                     const evolution::DamageFields& damage, bool listed_by_row) {
   if (!vtu_) return;
-  io::UnstructuredGrid grid = increment_grid(model, u, fracture, damage);
   const int processes = la::world_size();
   if (processes == 1) {
-    io::write_vtu(vtu_path(increment), grid);
+    io::write_vtu(vtu_path(increment), increment_grid(model, u, fracture, damage, {}));
   } else {
     // Each process writes the cells of its part (the bisection of the
-    // stretch pass), each tagged with its number in the whole mesh; then
-    // process 0 the index. A failure anywhere removes every process's piece.
-    io::Field cell{"cell", 1, {}};
-    for (Index c = 0; c < model.dofmap.num_cells(); ++c) cell.values.push_back(static_cast<double>(c));
-    grid.cell_data.push_back(std::move(cell));
+    // stretch pass), then process 0 the index. A failure anywhere removes
+    // every process's piece.
     if (piece_cells_.empty())
       piece_cells_ = partition::cells_of_part(model.mesh, processes, la::world_rank());
     const std::string stem = fmt::format("{}_{:04d}", basename_, increment);
     const std::string mine =
         (std::filesystem::path(directory_) / piece_name(stem, la::world_rank())).string();
     try {
-      la::on_every_process([&] { io::write_vtu(mine, io::grid_piece(grid, piece_cells_)); });
+      io::UnstructuredGrid piece;
+      la::on_every_process([&] {
+        piece = increment_grid(model, u, fracture, damage, piece_cells_);
+        io::write_vtu(mine, piece);
+      });
       la::on_process_zero([&] {
         std::vector<std::string> pieces;
         for (int r = 0; r < processes; ++r) pieces.push_back(piece_name(stem, r));
-        io::write_pvtu(vtu_path(increment), grid, pieces);
+        io::write_pvtu(vtu_path(increment), piece, pieces);
       });
     } catch (...) {
       std::error_code ec;

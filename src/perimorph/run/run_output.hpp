@@ -134,9 +134,13 @@ class RunOutput {
   /// This process's cells in a distributed run's VTU pieces (empty until the first).
   std::vector<char> piece_cells_;
 
+  /// The increment's grid: every cell, or with `selected` (a flag per cell)
+  /// the flagged cells, the points they use and a cell field `cell` (their
+  /// numbers in the whole mesh).
   io::UnstructuredGrid increment_grid(const setup::Discretization& model, std::span<const double> u,
                                       const evolution::FractureFields& fracture,
-                                      const evolution::DamageFields& damage) const;
+                                      const evolution::DamageFields& damage,
+                                      std::span<const char> selected) const;
   /// The VTU piece of process `process` of the increment file STEM.pvtu.
   static std::string piece_name(const std::string& stem, int process);
   /// Removes an increment's VTU, or its .pvtu and every process's piece.
