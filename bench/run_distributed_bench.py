@@ -34,10 +34,11 @@ CASES = {"b4": "examples/b4_cube_uniform_3d/case.toml", "b2": "examples/b2_plate
          "p4_40": "bench/cases/p4_n40.toml"}
 CONFIGS = [("1 process x 1 thread", 1, 1, []), ("1 process x 2 threads", 1, 2, []),
            ("2 processes x 1 thread", 2, 1, [])]
-# A case solved by a factorization: on several processes it is MUMPS' (la::LinearSolver), so one process
-# with MUMPS is the fair yardstick beside the case's own (PETSc's Cholesky).
+# A case solved by a factorization: on several processes it is SuperLU_DIST's (la::LinearSolver; MUMPS'
+# until 2026-12-05, when bench/results/distributed_runs.json was measured), so one process with the same
+# solver is the fair yardstick beside the case's own (PETSc's Cholesky).
 DIRECT = {"b2"}
-MUMPS = ("1 process x 1 thread, MUMPS", 1, 1, ["-pc_factor_mat_solver_type", "mumps"])
+SAME_FACTOR = ("1 process x 1 thread, SuperLU_DIST", 1, 1, ["-pc_factor_mat_solver_type", "superlu_dist"])
 
 
 def petsc_event(log, name):
@@ -81,7 +82,7 @@ def main():
                "cores": os.cpu_count(), "cases": {}}
     for name in args.cases:
         case = os.path.join(ROOT, CASES[name])
-        configs = CONFIGS + ([MUMPS] if name in DIRECT else [])
+        configs = CONFIGS + ([SAME_FACTOR] if name in DIRECT else [])
         runs = {label: [] for label, _, _, _ in configs}
         for _ in range(args.runs):
             for label, ranks, threads, extra in configs:
