@@ -35,10 +35,13 @@ class FreeSubtractInserter final : public assembly::MatrixInserter {
 };
 
 /// Per local point: (d(u) − h) C₀, plus (C₀ε)(C₀ε)ᵀ/k1 at the loading points
-/// when `tangent`; `cells` marks the cells where that is not zero.
+/// when `tangent`; `cells` marks the cells where that is not zero. Only the
+/// cells flagged in `mine` are looked at (all if empty): on several
+/// processes, the cells with a node this process owns, which are all the
+/// cells its rows sum.
 fem::ConstitutiveField damage_increment_field(const setup::Discretization& disc, std::span<const double> u,
                                               std::span<const double> history, bool tangent,
-                                              std::vector<char>& cells) {
+                                              std::span<const char> mine, std::vector<char>& cells) {
   const setup::DamageModel& dm = *disc.damage;
   const int npts = dm.points_per_cell;
   const int nv = fem::voigt_size(disc.dim());
@@ -51,6 +54,7 @@ fem::ConstitutiveField damage_increment_field(const setup::Discretization& disc,
   std::vector<Eigen::MatrixXd> T(static_cast<std::size_t>(npts));
   for (Index c = 0; c < ncells; ++c) {
     field.set_cell(c, zero);
+    if (!mine.empty() && mine[static_cast<std::size_t>(c)] == 0) continue;
     const int law = dm.law_of(c);
     if (law < 0 || !disc.has_local_stiffness(c)) continue;
     const fem::DamageLaw& L = dm.laws[static_cast<std::size_t>(law)];
@@ -93,13 +97,19 @@ DamageNewtonReport solve_damage_newton(const setup::Discretization& disc,
                                   : la::Matrix(local_pattern);  // K_Δ of the residual
   la::Matrix J = system.A().duplicate();
   la::Vector uv = system.make_vector(), Au = system.make_vector(), fcorr = system.make_vector();
-  std::vector<char> cells;
+  std::vector<char> cells, mine;
+  if (distribution) {
+    mine.assign(static_cast<std::size_t>(disc.mesh.num_cells()), 0);
+    for (Index c = 0; c < disc.mesh.num_cells(); ++c)
+      for (Index node : disc.dofmap.cell_nodes(c))
+        if (distribution->owns(node)) mine[static_cast<std::size_t>(c)] = 1;
+  }
   const std::vector<double> b = system.rhs_unit().to_replicated();  // fixed during the solve
   auto residual = [&](std::span<const double> x, std::span<double> r) {
     uv.assign_replicated(x);
     system.A().mult(uv, Au);
     local.zero_entries();
-    const auto field = damage_increment_field(disc, x, history, false, cells);
+    const auto field = damage_increment_field(disc, x, history, false, mine, cells);
     assembly::assemble_elasticity(space, field, local,
                                   [&](Index c) { return cells[static_cast<std::size_t>(c)] != 0; });
     local.finalize();
@@ -112,7 +122,7 @@ DamageNewtonReport solve_damage_newton(const setup::Discretization& disc,
   };
   auto jacobian = [&](std::span<const double> x, la::Matrix& Jm) {
     Jm.copy_values_from(system.A());
-    const auto field = damage_increment_field(disc, x, history, true, cells);
+    const auto field = damage_increment_field(disc, x, history, true, mine, cells);
     FreeSubtractInserter subtract(Jm, system);
     assembly::assemble_elasticity(space, field, subtract,
                                   [&](Index c) { return cells[static_cast<std::size_t>(c)] != 0; });
