@@ -116,8 +116,12 @@ run_asan() {
     # setting of the matrices run in perimorph_mpi_tests' replicated-copy test)
     'cli_mpi_checkpoint_continues_on_another_number_of_processes'
     # a fracture run on two processes until the disk is full, like cli_full_disk_* (2 of its
-    # 10 increments in 120 s under ASan); la::on_process_zero runs in perimorph_mpi_tests
+    # 10 increments in 120 s under ASan); la::on_process_zero and on_every_process run in
+    # perimorph_mpi_tests
     'cli_mpi_full_disk_.*'
+    # the flagship twice on two processes (its same-answer run is left out above);
+    # la::on_every_process runs in perimorph_mpi_tests
+    'cli_mpi_two_runs_give_the_same_bits'
     # the mesh fuzz target's replay (not built, see above)
     'fuzz_corpus_replay_mesh'
     # the verification suite: python scripts running the program on reduced benchmark
