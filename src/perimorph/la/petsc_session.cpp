@@ -158,26 +158,10 @@ int max_over_processes(int value) {
 }
 
 void on_process_zero(const std::function<void()>& act) {
-  if (world_size() == 1) {
-    act();
-    return;
-  }
-  std::exception_ptr error;
-  int kind = 0;  // 1: an output error, 2: any other
-  if (world_rank() == 0) {
-    try {
-      act();
-    } catch (const OutputError&) {
-      error = std::current_exception();
-      kind = 1;
-    } catch (...) {
-      error = std::current_exception();
-      kind = 2;
-    }
-  }
-  const int agreed = max_over_processes(kind);
-  if (error) std::rethrow_exception(error);
-  if (agreed != 0) throw StoppedByProcessZero(agreed == 1);
+  // Process 0 is then the lowest (and only) process that can fail.
+  on_every_process([&] {
+    if (world_rank() == 0) act();
+  });
 }
 
 void on_every_process(const std::function<void()>& act) {
