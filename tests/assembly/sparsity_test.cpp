@@ -172,5 +172,29 @@ TEST(AssemblySparsity, ExtraCellPairsWidenRows) {
   EXPECT_EQ(q.columns, p.columns);
 }
 
+TEST(AssemblySparsity, KeptRowsAreTheWholePatternsRowsAndTheOthersEmpty) {
+  const mesh::Mesh m = box(2, {4, 3, 1});
+  const dofs::DofMap dm(m, 2);
+  const std::vector<std::pair<Index, Index>> pairs{{0, 5}, {2, 11}, {4, 9}};
+  const auto graph = bonds::CellGraph::from_pairs(m.num_cells(), pairs);
+  const SparsityPattern whole = build_sparsity(dm, &graph);
+  const auto odd = [](Index r) { return r % 2 == 1; };
+  const SparsityPattern part = build_sparsity(dm, &graph, odd);
+  ASSERT_EQ(part.num_block_rows(), whole.num_block_rows());
+  EXPECT_EQ(part.block_size, whole.block_size);
+  std::size_t kept = 0;
+  for (Index r = 0; r < whole.num_block_rows(); ++r) {
+    const auto w = whole.row(r), q = part.row(r);
+    if (odd(r)) {
+      EXPECT_TRUE(std::equal(w.begin(), w.end(), q.begin(), q.end())) << "row " << r;
+      kept += w.size();
+    } else {
+      EXPECT_TRUE(q.empty()) << "row " << r;
+    }
+  }
+  EXPECT_EQ(part.columns.size(), kept);
+  EXPECT_LT(part.columns.size(), whole.columns.size());
+}
+
 }  // namespace
 }  // namespace perimorph::assembly

@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -86,6 +87,34 @@ TEST(StructuredNonlocalOperator, ProductEqualsTheAssembledStiffness3D) {
 
 TEST(StructuredNonlocalOperator, ProductEqualsTheAssembledStiffness2D) {
   expect_product_equals_assembly(2, {9, 6, 1});
+}
+
+TEST(StructuredNonlocalOperator, FlaggedCellsGiveTheirRowsOfTheWholeAssemblyAndPattern) {
+  const Fixture f = make(3, {6, 5, 4});
+  const Index cells = 6 * 5 * 4, n = f.model.dofmap.num_dofs();
+  std::vector<char> flagged(static_cast<std::size_t>(cells), 0);
+  for (Index c = 0; c < cells; c += 3) flagged[static_cast<std::size_t>(c)] = 1;
+  testing::DenseInserter whole(n), part(n);
+  f.K.assemble(whole);
+  f.K.assemble(part, flagged);
+  const assembly::SparsityPattern all = f.K.sparsity(), mine = f.K.sparsity(flagged);
+  ASSERT_EQ(mine.num_block_rows(), all.num_block_rows());
+  std::vector<char> row_flagged(static_cast<std::size_t>(all.num_block_rows()), 0);
+  for (Index c = 0; c < cells; ++c)
+    if (flagged[static_cast<std::size_t>(c)])
+      row_flagged[static_cast<std::size_t>(f.model.dofmap.cell_nodes(c)[0])] = 1;
+  for (Index r = 0; r < all.num_block_rows(); ++r) {
+    const bool in = row_flagged[static_cast<std::size_t>(r)] != 0;
+    const auto a = all.row(r), m = mine.row(r);
+    if (in)
+      EXPECT_TRUE(std::equal(a.begin(), a.end(), m.begin(), m.end())) << "row " << r;
+    else
+      EXPECT_TRUE(m.empty()) << "row " << r;
+    const int dim = 3;
+    const Eigen::MatrixXd expected =
+        in ? Eigen::MatrixXd(whole.A.middleRows(r * dim, dim)) : Eigen::MatrixXd::Zero(dim, n);
+    EXPECT_TRUE((part.A.middleRows(r * dim, dim).array() == expected.array()).all()) << "row " << r;
+  }
 }
 
 TEST(StructuredNonlocalOperator, SameForAnyThreadCount) {

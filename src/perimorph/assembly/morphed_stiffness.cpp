@@ -13,6 +13,7 @@
 #include "perimorph/peridynamics/pair_kernel.hpp"
 
 #include <array>
+#include <limits>
 
 namespace perimorph::assembly {
 
@@ -91,18 +92,21 @@ MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::Qu
                                  const bonds::NonlocalPoints& points, const bonds::CellGraph& graph,
                                  const peridynamics::Micromodulus& kernel, const alpha::AlphaField& alpha,
                                  const Eigen::MatrixXd& C0, CouplingRule rule_kind,
-                                 fem::ConstitutiveField& field) {
+                                 fem::ConstitutiveField& field, std::span<const char> computed) {
   const Index ncells = mesh.num_cells();
   const int nq = static_cast<int>(rule.size());
   const int nv = fem::voigt_size(mesh.dim());
   const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(nv, nv);
   const int id_local = field.add_tensor(C0);
   const int id_zero = field.add_tensor(zero);
+  const int id_absent =
+      field.add_tensor(Eigen::MatrixXd::Constant(nv, nv, std::numeric_limits<double>::quiet_NaN()));
 
   MorphedStiffness out;
   out.alpha.resize(static_cast<std::size_t>(ncells) * static_cast<std::size_t>(nq));
   out.purely_nonlocal.assign(static_cast<std::size_t>(ncells), 0);
   std::vector<std::vector<Eigen::MatrixXd>> per_point(static_cast<std::size_t>(ncells));
+  std::vector<char> absent(static_cast<std::size_t>(ncells), 0);  // not computed here: NaN
   // Partial volumes: the local points' own boxes (the local rule is a tensor
   // Gauss–Legendre rule), so that where the local and non-local rules coincide
   // the horizon integral uses exactly the bond weights of the stiffness.
@@ -123,12 +127,27 @@ MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::Qu
       amin = std::min(amin, points.cell_alpha_min[static_cast<std::size_t>(f)]);
       amax = std::max(amax, points.cell_alpha_max[static_cast<std::size_t>(f)]);
     }
+    // α at the local points: whether C must be computed to tell a purely
+    // non-local cell (α = 1 everywhere on the cell, C = 0 unless the horizon's α is lower).
+    bool all_one = true;
+    const std::size_t first = static_cast<std::size_t>(c) * static_cast<std::size_t>(nq);
+    for (int q = 0; q < nq; ++q) {
+      const double a = alpha(physical_point(mesh, c, rule[static_cast<std::size_t>(q)].xi));
+      out.alpha[first + static_cast<std::size_t>(q)] = a;
+      all_one = all_one && a == 1.0;
+    }
+    const bool wanted = computed.empty() || computed[static_cast<std::size_t>(c)] != 0;
+    if (!wanted && !(all_one && rule_kind == CouplingRule::morphing && amin < 1.0)) {
+      absent[static_cast<std::size_t>(c)] = 1;  // α alone decides: purely non-local iff α ≡ 1 around
+      out.purely_nonlocal[static_cast<std::size_t>(c)] =
+          all_one && (rule_kind == CouplingRule::partition || amin == 1.0) ? 1 : 0;
+      continue;
+    }
     std::vector<Eigen::MatrixXd> C(static_cast<std::size_t>(nq));
     bool uniform = true, all_zero = true;
     for (int q = 0; q < nq; ++q) {
       const Vec3 x = physical_point(mesh, c, rule[static_cast<std::size_t>(q)].xi);
-      const double a = alpha(x);
-      out.alpha[static_cast<std::size_t>(c) * static_cast<std::size_t>(nq) + static_cast<std::size_t>(q)] = a;
+      const double a = out.alpha[first + static_cast<std::size_t>(q)];
       Eigen::MatrixXd Cq = (1.0 - a) * C0;
       if (rule_kind == CouplingRule::morphing && !(amin == a && amax == a))
         Cq += horizon_integral(x, a, graph.row(c), points, kernel, mesh,
@@ -140,8 +159,10 @@ MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::Qu
       uniform = uniform && a == 0.0 && (Cq.array() == C0.array()).all();
       C[static_cast<std::size_t>(q)] = std::move(Cq);
     }
-    if (all_zero)
+    if (all_zero && all_one)
       out.purely_nonlocal[static_cast<std::size_t>(c)] = 1;
+    else if (!wanted)
+      absent[static_cast<std::size_t>(c)] = 1;
     else if (!uniform)
       per_point[static_cast<std::size_t>(c)] = std::move(C);
   }
@@ -149,6 +170,8 @@ MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::Qu
     auto& C = per_point[static_cast<std::size_t>(c)];
     if (out.purely_nonlocal[static_cast<std::size_t>(c)])
       field.set_cell(c, id_zero);
+    else if (absent[static_cast<std::size_t>(c)])
+      field.set_cell(c, id_absent);
     else if (C.empty())
       field.set_cell(c, id_local);
     else {

@@ -35,9 +35,10 @@ enum class CouplingRule { morphing, partition };
 struct MorphedStiffness {
   /// α at the local quadrature points (cell c, point q at c·n + q).
   std::vector<double> alpha;
-  /// 1 where C ≡ 0 at every local point of the cell: a purely non-local cell.
+  /// 1 where α = 1 and C = 0 at every local point of the cell: a purely
+  /// non-local cell (where α < 1 at a point, C keeps (1 − α) C₀ there).
   std::vector<char> purely_nonlocal;
-  /// Cells whose C varies point by point (the morphing zone).
+  /// Cells whose C varies point by point (the morphing zone), of those computed.
   Index morphing_cells = 0;
 };
 
@@ -54,13 +55,17 @@ Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const
                                  const peridynamics::Micromodulus& kernel, const mesh::Mesh& mesh,
                                  const Vec3& half_g = Vec3::Zero());
 
-/// Fills `field` (sized for `rule`) with C(x) for every cell, from the
-/// reference stiffness C0 (Voigt, model dimension). `graph` must hold, for each
-/// cell, every cell within the horizon.
+/// Fills `field` (sized for `rule`) with C(x) for every cell marked in
+/// `computed` (every cell if empty), from the reference stiffness C0 (Voigt,
+/// model dimension); the other cells get NaN, unless purely non-local (0).
+/// α and the purely non-local flags are those of every cell, the same
+/// whatever is computed: a cell with α = 1 at every local point whose C is
+/// not 0 by its horizon's α alone has its C computed all the same, to decide.
+/// `graph` must hold, for each cell, every cell within the horizon.
 MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::QuadraturePoint> rule,
                                  const bonds::NonlocalPoints& points, const bonds::CellGraph& graph,
                                  const peridynamics::Micromodulus& kernel, const alpha::AlphaField& alpha,
                                  const Eigen::MatrixXd& C0, CouplingRule rule_kind,
-                                 fem::ConstitutiveField& field);
+                                 fem::ConstitutiveField& field, std::span<const char> computed = {});
 
 }  // namespace perimorph::assembly

@@ -7,20 +7,26 @@
 
 namespace perimorph::assembly {
 
-SparsityPattern build_sparsity(const dofs::DofMap& dofmap, const bonds::CellGraph* graph) {
+SparsityPattern build_sparsity(const dofs::DofMap& dofmap, const bonds::CellGraph* graph,
+                               const std::function<bool(Index)>& keep_row) {
   const auto nnodes = static_cast<std::size_t>(dofmap.num_nodes());
   const Index ncells = dofmap.num_cells();
-  // Cells touching each dof node.
+  std::vector<char> kept(nnodes, 1);
+  if (keep_row)
+    for (std::size_t a = 0; a < nnodes; ++a) kept[a] = keep_row(static_cast<Index>(a)) ? 1 : 0;
+  // Cells touching each kept dof node.
   std::vector<Index> start(nnodes + 1, 0);
   for (Index c = 0; c < ncells; ++c)
-    for (Index n : dofmap.cell_nodes(c)) ++start[static_cast<std::size_t>(n) + 1];
+    for (Index n : dofmap.cell_nodes(c))
+      if (kept[static_cast<std::size_t>(n)]) ++start[static_cast<std::size_t>(n) + 1];
   for (std::size_t i = 0; i < nnodes; ++i) start[i + 1] += start[i];
   std::vector<Index> node_cells(static_cast<std::size_t>(start[nnodes]));
   {
     std::vector<Index> fill(start.begin(), start.end() - 1);
     for (Index c = 0; c < ncells; ++c)
       for (Index n : dofmap.cell_nodes(c))
-        node_cells[static_cast<std::size_t>(fill[static_cast<std::size_t>(n)]++)] = c;
+        if (kept[static_cast<std::size_t>(n)])
+          node_cells[static_cast<std::size_t>(fill[static_cast<std::size_t>(n)]++)] = c;
   }
 
   std::vector<std::vector<Index>> rows(nnodes);

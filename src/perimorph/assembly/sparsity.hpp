@@ -6,6 +6,7 @@
 #include "perimorph/core/types.hpp"
 
 #include <cassert>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -34,7 +35,11 @@ struct SparsityPattern {
 /// Pattern coupling the dof nodes of every cell with themselves (local model)
 /// and, if a cell graph is given, with the dof nodes of every neighbour cell
 /// (non-local model). Built row by row with a marker array: memory is the
-/// pattern itself.
-SparsityPattern build_sparsity(const dofs::DofMap& dofmap, const bonds::CellGraph* graph = nullptr);
+/// pattern itself. With `keep_row`, the rows of the dof nodes it accepts
+/// only, the others empty: a process of a distributed run builds its owned
+/// rows (la::Matrix reads no other), so the pattern's memory and work fall
+/// with the number of processes.
+SparsityPattern build_sparsity(const dofs::DofMap& dofmap, const bonds::CellGraph* graph = nullptr,
+                               const std::function<bool(Index)>& keep_row = {});
 
 }  // namespace perimorph::assembly

@@ -155,10 +155,11 @@ std::vector<Index> StructuredNonlocalOperator::nodes_read(std::span<const char> 
   return nodes;
 }
 
-SparsityPattern StructuredNonlocalOperator::sparsity() const {
+SparsityPattern StructuredNonlocalOperator::sparsity(std::span<const char> cells) const {
   const Index total = n_[0] * n_[1] * n_[2];
   std::vector<std::vector<Index>> rows(static_cast<std::size_t>(total));
   for (Index c = 0; c < total; ++c) {
+    if (!cells.empty() && !cells[static_cast<std::size_t>(c)]) continue;
     auto& r = rows[static_cast<std::size_t>(node_[static_cast<std::size_t>(c)])];
     r.push_back(node_[static_cast<std::size_t>(c)]);
     for_each_neighbour(b_.offsets, n_, c,
@@ -176,13 +177,14 @@ SparsityPattern StructuredNonlocalOperator::sparsity() const {
   return p;
 }
 
-void StructuredNonlocalOperator::assemble(MatrixInserter& K) const {
+void StructuredNonlocalOperator::assemble(MatrixInserter& K, std::span<const char> cells) const {
   const int dim = b_.dim;
   const auto dd = static_cast<std::size_t>(dim * dim);
   const Index total = n_[0] * n_[1] * n_[2];
   std::vector<Index> rows(static_cast<std::size_t>(dim)), cols(static_cast<std::size_t>(dim));
   std::vector<double> diag(dd), off(dd);
   for (Index c = 0; c < total; ++c) {
+    if (!cells.empty() && !cells[static_cast<std::size_t>(c)]) continue;
     const Index node = node_[static_cast<std::size_t>(c)];
     for (int d = 0; d < dim; ++d) rows[static_cast<std::size_t>(d)] = node * dim + d;
     std::fill(diag.begin(), diag.end(), 0.0);

@@ -51,10 +51,12 @@ class StructuredNonlocalOperator {
   /// The pattern of K: each cell with itself and its neighbours at the
   /// offsets (block size dim), exact for the bonds (the cell graph's pattern
   /// holds every pair of cells within the horizon of each other's boxes).
-  SparsityPattern sparsity() const;
+  /// With `cells`, the rows of the flagged cells only, the others empty.
+  SparsityPattern sparsity(std::span<const char> cells = {}) const;
   /// K += the operator, one block row per cell (for a preconditioner built on
-  /// a short horizon's blocks: la::Matrix needs entries).
-  void assemble(MatrixInserter& K) const;
+  /// a short horizon's blocks: la::Matrix needs entries); with `cells`, the
+  /// rows of the flagged cells only (a process's own).
+  void assemble(MatrixInserter& K, std::span<const char> cells = {}) const;
 
  private:
   OffsetBlocks b_;

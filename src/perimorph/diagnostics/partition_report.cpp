@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <string>
 #include <vector>
 
 namespace perimorph::diagnostics {
@@ -48,8 +49,9 @@ std::string partition_report(const setup::Discretization& disc, int parts) {
   const bonds::CellGraph& bonds_graph = disc.nonlocal ? disc.nonlocal->graph : diagonal;
   const partition::DofLayout layout = partition::dof_layout(disc.dofmap, p, bonds_graph);
   Index max_owned = 0, max_ghosts = 0;
-  std::size_t cells_computed = 0, pairs_computed = 0;
+  std::size_t cells_computed = 0, pairs_computed = 0, cells_morphed = 0;
   for (int q = 0; q < parts; ++q) {
+    for (char c : partition::cells_near_part(disc.mesh, parts, q)) cells_morphed += c != 0;
     max_owned = std::max(max_owned, layout.owned_nodes(q));
     max_ghosts = std::max(max_ghosts, static_cast<Index>(layout.ghosts[static_cast<std::size_t>(q)].size()));
     const auto touching = partition::cells_touching(
@@ -66,10 +68,14 @@ std::string partition_report(const setup::Discretization& disc, int parts) {
   };
   out += fmt::format(
       "           owner computes (coordinate bisection): max owned dof nodes {}, max ghost nodes {} "
-      "(ghosts/owned {:.3f}); cells computed {:.3f}× and cell pairs {:.3f}× those of one process\n",
+      "(ghosts/owned {:.3f}); cells computed {:.3f}× and cell pairs {:.3f}× those of one process{}\n",
       max_owned, max_ghosts, layout.ghost_ratio(),
       per(cells_computed, static_cast<std::size_t>(disc.mesh.num_cells())),
-      per(pairs_computed, bonds_graph.num_pairs()));
+      per(pairs_computed, bonds_graph.num_pairs()),
+      disc.nonlocal && parts > 1
+          ? fmt::format("; morphed C set up for {:.3f}× the cells (each part's and their node neighbours)",
+                        per(cells_morphed, static_cast<std::size_t>(disc.mesh.num_cells())))
+          : std::string());
   return out;
 }
 

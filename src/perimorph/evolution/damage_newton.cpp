@@ -92,7 +92,8 @@ DamageNewtonReport solve_damage_newton(const setup::Discretization& disc,
   // Laid out as the system (spread over the processes of a distributed run:
   // each process keeps its own rows of what every process assembles whole).
   const auto& distribution = system.A().distribution();
-  const assembly::SparsityPattern local_pattern = assembly::build_sparsity(disc.dofmap);
+  const assembly::SparsityPattern local_pattern = assembly::build_sparsity(
+      disc.dofmap, nullptr, [&](Index node) { return !distribution || distribution->owns(node); });
   la::Matrix local = distribution ? la::Matrix(local_pattern, distribution)
                                   : la::Matrix(local_pattern);  // K_Δ of the residual
   la::Matrix J = system.A().duplicate();

@@ -17,11 +17,10 @@ double DofLayout::ghost_ratio() const {
   return num_nodes() > 0 ? static_cast<double>(ghost_nodes) / static_cast<double>(num_nodes()) : 0.0;
 }
 
-DofLayout dof_layout(const dofs::DofMap& dofmap, const Partition& p, const bonds::CellGraph& graph) {
+DofLayout dof_numbering(const dofs::DofMap& dofmap, const Partition& p) {
   const Index cells = dofmap.num_cells();
-  if (static_cast<Index>(p.owner.size()) != cells || graph.num_cells() != cells)
-    throw Error(fmt::format("dof layout: the partition has {} cells and the cell graph {}, the dof map {}",
-                            p.owner.size(), graph.num_cells(), cells));
+  if (static_cast<Index>(p.owner.size()) != cells)
+    throw Error(fmt::format("dof layout: the partition has {} cells, the dof map {}", p.owner.size(), cells));
   const auto parts = static_cast<std::size_t>(p.parts);
   DofLayout out;
   out.parts = p.parts;
@@ -52,6 +51,17 @@ DofLayout dof_layout(const dofs::DofMap& dofmap, const Partition& p, const bonds
   out.to_distributed.resize(nodes);
   for (std::size_t n = 0; n < nodes; ++n)
     out.to_distributed[n] = next[static_cast<std::size_t>(out.node_owner[n])]++;
+  return out;
+}
+
+DofLayout dof_layout(const dofs::DofMap& dofmap, const Partition& p, const bonds::CellGraph& graph) {
+  const Index cells = dofmap.num_cells();
+  if (graph.num_cells() != cells)
+    throw Error(
+        fmt::format("dof layout: the cell graph has {} cells, the dof map {}", graph.num_cells(), cells));
+  DofLayout out = dof_numbering(dofmap, p);
+  const auto parts = static_cast<std::size_t>(p.parts);
+  const auto nodes = static_cast<std::size_t>(dofmap.num_nodes());
 
   // Ghosts: the nodes of the cells a part computes (touching an owned node)
   // and of their neighbours in the cell graph, owned by another part.

@@ -44,7 +44,7 @@ struct DofLayout {
   std::vector<Index> part_offsets;
   /// Per part, the nodes (serial numbering, sorted) another part owns that the
   /// part's rows couple to: those of the cells it computes and of their
-  /// neighbours in the cell graph.
+  /// neighbours in the cell graph (empty from dof_numbering).
   std::vector<std::vector<Index>> ghosts;
 
   Index num_nodes() const { return static_cast<Index>(node_owner.size()); }
@@ -55,9 +55,16 @@ struct DofLayout {
   double ghost_ratio() const;
 };
 
-/// The layout of `dofmap`'s nodes over the parts of `p` (one owner per cell of
-/// dofmap's mesh), with the cell pairs of `graph` (the local model's diagonal
-/// graph for no bonds). Throws Error if the sizes disagree.
+/// The owners and the distributed numbering of `dofmap`'s nodes over the
+/// parts of `p` (one owner per cell of dofmap's mesh), without the ghosts:
+/// what a process of a distributed run needs (work O(cells' nodes), whatever
+/// the number of parts). Throws Error if the sizes disagree.
+DofLayout dof_numbering(const dofs::DofMap& dofmap, const Partition& p);
+
+/// dof_numbering and every part's ghosts, with the cell pairs of `graph` (the
+/// local model's diagonal graph for no bonds): the report of a partition
+/// (perimorph info --partition; work O(parts × cells)). Throws Error if the
+/// sizes disagree.
 DofLayout dof_layout(const dofs::DofMap& dofmap, const Partition& p, const bonds::CellGraph& graph);
 
 /// 1 for each cell with a node `owns` (a predicate on dof nodes) holds for: the

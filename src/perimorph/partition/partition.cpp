@@ -54,6 +54,19 @@ std::vector<char> cells_of_part(const mesh::Mesh& mesh, int parts, int part) {
   return mine;
 }
 
+std::vector<char> cells_near_part(const mesh::Mesh& mesh, int parts, int part) {
+  std::vector<char> near = cells_of_part(mesh, parts, part);
+  if (near.empty()) return near;
+  std::vector<char> node_of_part(static_cast<std::size_t>(mesh.num_nodes()), 0);
+  for (Index c = 0; c < mesh.num_cells(); ++c)
+    if (near[static_cast<std::size_t>(c)])
+      for (Index n : mesh.cell(c)) node_of_part[static_cast<std::size_t>(n)] = 1;
+  for (Index c = 0; c < mesh.num_cells(); ++c)
+    for (Index n : mesh.cell(c))
+      if (node_of_part[static_cast<std::size_t>(n)]) near[static_cast<std::size_t>(c)] = 1;
+  return near;
+}
+
 Partition coordinate_bisection(const mesh::Mesh& mesh, int parts) {
   const Index n = mesh.num_cells();
   if (parts < 1 || parts > n)

@@ -40,6 +40,15 @@ Partition coordinate_bisection(const mesh::Mesh& mesh, int parts);
 /// the damage update).
 std::vector<char> cells_of_part(const mesh::Mesh& mesh, int parts, int part);
 
+/// The cells of part `part` and every cell sharing a mesh node with one of
+/// them, marked 1 (empty for one part): a superset of the cells with a dof
+/// node the part can own, whatever α makes CG or DG (dof_layout: a DG node
+/// is its cell's part's, a CG node, at a mesh node, the lowest part among
+/// its cells'), so of the cells whose local stiffness the part assembles
+/// (cells_touching) and of its cells_of_part. What a process of a distributed
+/// run computes the morphed C of (setup::Discretization::computed_cells).
+std::vector<char> cells_near_part(const mesh::Mesh& mesh, int parts, int part);
+
 /// The cells each cell is coupled to: those sharing a node with it (CG dofs,
 /// local assembly) and its neighbours in `graph` (bonds), the cell itself
 /// included; rows sorted. The graph a partitioner should cut least.

@@ -146,6 +146,9 @@ io::UnstructuredGrid RunOutput::increment_grid(const setup::Discretization& mode
   std::vector<Index> cells;
   for (Index c = 0; c < dm.num_cells(); ++c)
     if (selected.empty() || selected[static_cast<std::size_t>(c)]) cells.push_back(c);
+  for (Index c : cells)  // their stresses need their C
+    PERIMORPH_ASSERT(model.computed_cells.empty() || model.computed_cells[static_cast<std::size_t>(c)],
+                     "the output writes a cell whose morphed C this process did not compute");
   io::UnstructuredGrid grid;
   grid.nodes_per_cell = model.mesh.nodes_per_cell();
   grid.cell_type = vtk_cell(dim_);

@@ -7,6 +7,7 @@
 #include "perimorph/mesh/cut.hpp"
 #include "perimorph/mesh/gmsh_reader.hpp"
 #include "perimorph/mesh/holes.hpp"
+#include "perimorph/partition/partition.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -196,7 +197,7 @@ void place_alpha(Discretization& d, alpha::AlphaField alpha, const std::function
                                        config.nonlocal.coupling == casefile::Coupling::partition
                                            ? assembly::CouplingRule::partition
                                            : assembly::CouplingRule::morphing,
-                                       d.stiffness);
+                                       d.stiffness, d.computed_cells);
   if (d.damage && !d.damage->laws.empty()) {
     // THEORY §6: the morphing acts on the residual branch (1 − d_c) C₀ only;
     // the damageable branch d_c C₀ (lowered by d during a run) is local everywhere.
@@ -260,7 +261,8 @@ void check_matrix_free(const casefile::CaseConfig& config) {
         config.solver.operator_where.describe(), why));
 }
 
-Discretization build_discretization(const casefile::CaseConfig& config, const PhaseCallback& on_phase) {
+Discretization build_discretization(const casefile::CaseConfig& config, const PhaseCallback& on_phase,
+                                    ModelPart part) {
   auto phase = [&](const char* name) {
     if (on_phase) on_phase(name);
   };
@@ -325,8 +327,10 @@ Discretization build_discretization(const casefile::CaseConfig& config, const Ph
   if (config.has_damage())
     damage = make_damage_model(config, m, rule, config.nonlocal.enabled ? config.nonlocal.quadrature : 0,
                                nl ? &full_C0 : nullptr);
-  Discretization d{config,           std::move(m), std::move(dofmap), std::move(rule),
-                   std::move(field), scale,        std::move(nl),     std::move(damage)};
+  Discretization d{config,          std::move(m),      std::move(dofmap),
+                   std::move(rule), std::move(field),  scale,
+                   std::move(nl),   std::move(damage), {}};
+  d.computed_cells = partition::cells_near_part(d.mesh, part.parts, part.part);
   if (d.nonlocal) place_alpha(d, make_alpha_field(config), phase, true);
   return d;
 }

@@ -35,6 +35,13 @@ struct Discretization {
   std::optional<NonlocalModel> nonlocal;
   /// The local damage, when a material has [material.damage].
   std::optional<DamageModel> damage;
+  /// The cells whose morphed C this process computed (1; empty: every cell).
+  /// A process of a distributed run computes those of its part and their
+  /// neighbours through a mesh node (partition::cells_near_part): every cell
+  /// whose local stiffness, strain or stress it assembles or writes. With
+  /// [nonlocal], elsewhere `stiffness` holds NaN, so that a read of it shows. The CG/DG flags and
+  /// α at the local points are those of every cell, on every process.
+  std::vector<char> computed_cells;
 
   int dim() const { return mesh.dim(); }
   assembly::LocalSpace local_space() const { return {mesh, dofmap, rule, scale}; }
@@ -74,11 +81,21 @@ using PhaseCallback = std::function<void(const std::string& phase)>;
 /// adaptivity). Called by build_discretization.
 void check_matrix_free(const casefile::CaseConfig& config);
 
+/// The part of the model a process builds: part `part` of `parts`
+/// (coordinate bisection of the cells; one part: the whole model).
+struct ModelPart {
+  int parts = 1;
+  int part = 0;
+};
+
 /// Builds everything; throws InputError naming the case-file key for problems
 /// found only now (a cut off the element faces, an inadmissible material, a
 /// cell left without material, an [[alpha.region]] that reaches no
-/// quadrature point). `on_phase`, if given, hears each phase begin.
-Discretization build_discretization(const casefile::CaseConfig& config, const PhaseCallback& on_phase = {});
+/// quadrature point). `on_phase`, if given, hears each phase begin. With
+/// several parts, the morphed C of the cells near `part` only
+/// (Discretization::computed_cells); the rest is whole.
+Discretization build_discretization(const casefile::CaseConfig& config, const PhaseCallback& on_phase = {},
+                                    ModelPart part = {});
 
 /// The discretization of `disc`'s case with α replaced by `alpha` (THEORY §5:
 /// α grows during a run). Kept: the mesh, the local quadrature, the material
@@ -88,7 +105,8 @@ Discretization build_discretization(const casefile::CaseConfig& config, const Ph
 /// positions per cell do not depend on α) and quadrature points, so a run's
 /// failed bonds (bonds::BrokenBonds) and history carry over; dofs change where
 /// cells switch between CG and DG. Equals build_discretization of the case
-/// with that α. Requires [nonlocal].
+/// with that α, and computes the same cells' C (computed_cells). Requires
+/// [nonlocal].
 Discretization rebuild_for_alpha(const Discretization& disc, alpha::AlphaField alpha);
 
 }  // namespace perimorph::setup

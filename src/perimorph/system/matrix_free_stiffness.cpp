@@ -1,6 +1,5 @@
 #include "perimorph/system/matrix_free_stiffness.hpp"
 
-#include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/system/stiffness.hpp"
@@ -52,14 +51,15 @@ MatrixFreeStiffness build_matrix_free_stiffness(const setup::Discretization& mod
   std::shared_ptr<const la::Distribution> distribution;
   std::vector<char> owned_cells;
   if (la::world_size() > 1) {
-    distribution = distribution_over_processes(model, bonds::CellGraph::diagonal(model.mesh.num_cells()));
+    distribution = distribution_over_processes(model);
     owned_cells.resize(node_of_cell.size());
     for (std::size_t c = 0; c < node_of_cell.size(); ++c)
       owned_cells[c] = distribution->owns(node_of_cell[c]);
   }
-  // Every process inserts every row; each keeps those it owns (la::Matrix::add).
-  la::Matrix P = distribution ? la::Matrix(short_K.sparsity(), distribution) : la::Matrix(short_K.sparsity());
-  short_K.assemble(P);
+  // Each process builds and inserts the rows of its own cells only.
+  la::Matrix P =
+      distribution ? la::Matrix(short_K.sparsity(owned_cells), distribution) : la::Matrix(short_K.sparsity());
+  short_K.assemble(P, owned_cells);
   P.finalize();
   return {assembly::StructuredNonlocalOperator(grid_offset_blocks(config, layout), layout.cells,
                                                std::move(node_of_cell)),

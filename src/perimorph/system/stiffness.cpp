@@ -2,6 +2,7 @@
 
 #include "perimorph/assembly/sparsity.hpp"
 #include "perimorph/bonds/cell_graph.hpp"
+#include "perimorph/core/error.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/partition/dof_layout.hpp"
 
@@ -68,11 +69,16 @@ AssembledStiffness assemble_stiffness(const setup::Discretization& model,
                                       const bonds::BrokenBonds* broken, std::span<const double> damage) {
   const auto t0 = clock::now();
   const bonds::CellGraph* graph = model.nonlocal ? &model.nonlocal->graph : nullptr;
+  const auto owned = [&](Index n) { return distribution->owns(n); };
+  // The owned rows' pattern only (la::Matrix reads no other).
   AssembledStiffness out{
-      la::Matrix(assembly::build_sparsity(model.dofmap, graph), distribution), {}, 0.0, 0.0, 0.0};
+      la::Matrix(assembly::build_sparsity(model.dofmap, graph, owned), distribution), {}, 0.0, 0.0, 0.0};
   // Owner computes: the cells and pairs touching an owned node, their owned rows kept.
-  const std::vector<char> touching =
-      partition::cells_touching(model.dofmap, [&](Index n) { return distribution->owns(n); });
+  const std::vector<char> touching = partition::cells_touching(model.dofmap, owned);
+  for (Index c = 0; c < model.mesh.num_cells() && !model.computed_cells.empty(); ++c)
+    PERIMORPH_ASSERT(
+        !touching[static_cast<std::size_t>(c)] || model.computed_cells[static_cast<std::size_t>(c)],
+        "a process assembles a cell whose morphed C it did not compute");
   out.setup_seconds = seconds_since(t0);
   assemble_into(
       out, model, broken, damage, [&](Index c) { return touching[static_cast<std::size_t>(c)] != 0; },
@@ -91,14 +97,8 @@ AssembledStiffness assemble_stiffness_over_processes(const setup::Discretization
 
 std::shared_ptr<const la::Distribution> distribution_over_processes(const setup::Discretization& model) {
   if (la::world_size() == 1) return nullptr;
-  if (model.nonlocal) return distribution_over_processes(model, model.nonlocal->graph);
-  return distribution_over_processes(model, bonds::CellGraph::diagonal(model.mesh.num_cells()));
-}
-
-std::shared_ptr<const la::Distribution> distribution_over_processes(const setup::Discretization& model,
-                                                                    const bonds::CellGraph& graph) {
   const partition::Partition p = partition::coordinate_bisection(model.mesh, la::world_size());
-  return distribution_of(partition::dof_layout(model.dofmap, p, graph), la::world_rank());
+  return distribution_of(partition::dof_numbering(model.dofmap, p), la::world_rank());
 }
 
 }  // namespace perimorph::system

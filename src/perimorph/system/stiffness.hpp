@@ -45,13 +45,8 @@ AssembledStiffness assemble_stiffness(const setup::Discretization& model,
 
 /// This process's share of the dof nodes of `model` on PETSC_COMM_WORLD: the
 /// cells cut into one part per process by partition::coordinate_bisection,
-/// the nodes laid out by partition::dof_layout with `graph` (the cell pairs
-/// that couple). Collective.
-std::shared_ptr<const la::Distribution> distribution_over_processes(const setup::Discretization& model,
-                                                                    const bonds::CellGraph& graph);
-
-/// The same with the cell graph of `model` (its non-local one; with none,
-/// each cell coupling only itself); null on one process. Collective.
+/// the nodes owned and numbered by partition::dof_numbering; null on one
+/// process.
 std::shared_ptr<const la::Distribution> distribution_over_processes(const setup::Discretization& model);
 
 /// K spread over the processes of PETSC_COMM_WORLD: the cells cut into one

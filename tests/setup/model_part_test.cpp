@@ -1,0 +1,132 @@
+// The part of a model a process builds (setup/discretization.hpp, ModelPart;
+// issue 17, item 1): the morphed C only of the cells near its part
+// (partition::cells_near_part), bit for bit the whole model's there, NaN
+// elsewhere (0 on purely non-local cells); α at the local points, the CG/DG
+// flags, the dofs and the cell graph are the whole model's, so every process
+// numbers the dofs alike. The cells near a part hold every cell whose local
+// stiffness it assembles (touching a dof node it owns: dof_layout), whatever α
+// makes CG or DG, and its own cells (output, damage); a rebuild for a grown α
+// keeps the part.
+
+#include "perimorph/bonds/cell_graph.hpp"
+#include "perimorph/casefile/parse_case.hpp"
+#include "perimorph/partition/dof_layout.hpp"
+#include "perimorph/setup/discretization.hpp"
+#include "perimorph/setup/nonlocal_setup.hpp"
+#include "support/cases.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <string>
+
+namespace perimorph {
+namespace {
+
+struct Named {
+  std::string name;
+  casefile::CaseConfig config;
+};
+
+std::vector<Named> cases() {
+  const std::string examples = std::string(PERIMORPH_SOURCE_DIR) + "/examples/";
+  auto ball3d = testing::box_case(3, {6, 6, 6}, Vec3(3.0, 3.0, 3.0), 100.0, 0.25);
+  testing::add_nonlocal(ball3d, casefile::KernelKind::constant, 1.0, 0.0, 2,
+                        casefile::Discretization::discontinuous_constant);
+  ball3d.alpha.regions = {testing::alpha_ball(Vec3(1.5, 1.5, 1.5), 1.0, 0.6)};
+  return {{"mixed CG/DG plate", testing::mixed_cg_dg_plate()},
+          {"3D ball, DG degree 0", ball3d},
+          {"b3 (cut, CG)", casefile::parse_case_file(examples + "b3_cracked_plate_2d/case.toml")},
+          {"flagship (holes, DG)", casefile::parse_case_file(examples + "hole_plate_2d/case.toml")}};
+}
+
+bool bitwise_equal(const double* a, const double* b, int n) {
+  return std::memcmp(a, b, static_cast<std::size_t>(n) * sizeof(double)) == 0;
+}
+
+/// `part` against `whole`: the same flags, α, dofs and graph; the same C on
+/// every computed cell; NaN or 0 (purely non-local) elsewhere. Returns the
+/// number of cells left NaN.
+Index expect_part_of(const setup::Discretization& part, const setup::Discretization& whole) {
+  const auto& pm = part.nonlocal->morph;
+  const auto& wm = whole.nonlocal->morph;
+  EXPECT_EQ(pm.purely_nonlocal, wm.purely_nonlocal);
+  EXPECT_EQ(pm.alpha, wm.alpha);
+  EXPECT_EQ(part.nonlocal->graph.offsets, whole.nonlocal->graph.offsets);
+  EXPECT_EQ(part.nonlocal->graph.neighbors, whole.nonlocal->graph.neighbors);
+  EXPECT_EQ(part.dofmap.num_nodes(), whole.dofmap.num_nodes());
+  const int nv2 = part.stiffness.voigt() * part.stiffness.voigt();
+  Index absent = 0;
+  for (Index c = 0; c < whole.mesh.num_cells(); ++c) {
+    const auto pn = part.dofmap.cell_nodes(c), wn = whole.dofmap.cell_nodes(c);
+    EXPECT_TRUE(std::equal(pn.begin(), pn.end(), wn.begin(), wn.end())) << "cell " << c;
+    const bool computed = part.computed_cells[static_cast<std::size_t>(c)] != 0;
+    bool nan = false;
+    for (int q = 0; q < part.stiffness.points_per_cell(); ++q) {
+      const double* C = part.stiffness.at(c, q);
+      if (computed || wm.purely_nonlocal[static_cast<std::size_t>(c)]) {
+        EXPECT_TRUE(bitwise_equal(C, whole.stiffness.at(c, q), nv2)) << "cell " << c << " point " << q;
+      } else {
+        EXPECT_TRUE(std::isnan(C[0])) << "cell " << c << " point " << q;
+        nan = true;
+      }
+    }
+    absent += nan ? 1 : 0;
+  }
+  return absent;
+}
+
+TEST(ModelPart, APartComputesTheCellsItAssemblesBitForBitAndNoOthers) {
+  for (const auto& [name, config] : cases()) {
+    SCOPED_TRACE(name);
+    const auto whole = setup::build_discretization(config);
+    ASSERT_TRUE(whole.computed_cells.empty());
+    ASSERT_TRUE(whole.nonlocal.has_value());
+    EXPECT_TRUE(setup::build_discretization(config, {}, {1, 0}).computed_cells.empty());
+    const Index ncells = whole.mesh.num_cells();
+    for (int parts : {2, 3, 4}) {
+      SCOPED_TRACE(parts);
+      const auto p = partition::coordinate_bisection(whole.mesh, parts);
+      const auto layout = partition::dof_layout(whole.dofmap, p, whole.nonlocal->graph);
+      Index computed_total = 0;
+      for (int q = 0; q < parts; ++q) {
+        const auto part = setup::build_discretization(config, {}, {parts, q});
+        ASSERT_EQ(part.computed_cells.size(), static_cast<std::size_t>(ncells));
+        const Index absent = expect_part_of(part, whole);
+        EXPECT_GT(absent, 0) << "part " << q << " computed every cell's C";
+        const auto touching = partition::cells_touching(
+            whole.dofmap, [&](Index n) { return layout.node_owner[static_cast<std::size_t>(n)] == q; });
+        for (Index c = 0; c < ncells; ++c) {
+          const auto k = static_cast<std::size_t>(c);
+          computed_total += part.computed_cells[k] != 0;
+          EXPECT_TRUE(part.computed_cells[k] || (!touching[k] && p.owner[k] != q))
+              << "part " << q << " assembles or owns cell " << c << " without its C";
+        }
+      }
+      // Near a boundary cells are computed twice, but not every cell on every part.
+      EXPECT_GE(computed_total, ncells);
+      EXPECT_LT(computed_total, static_cast<Index>(parts) * ncells);
+      std::printf("%s, %d parts: %.2f× the cells of one process computed in all\n", name.c_str(), parts,
+                  static_cast<double>(computed_total) / static_cast<double>(ncells));
+    }
+  }
+}
+
+TEST(ModelPart, ARebuildForAGrownAlphaKeepsThePart) {
+  const auto config = testing::mixed_cg_dg_plate();
+  const auto part = setup::build_discretization(config, {}, {3, 1});
+  const auto whole = setup::build_discretization(config);
+  auto wide = config;
+  wide.alpha.regions.front().radius += 1.5;
+  const auto grown = setup::make_alpha_field(wide);
+  const auto rebuilt_part = setup::rebuild_for_alpha(part, grown);
+  const auto rebuilt_whole = setup::rebuild_for_alpha(whole, grown);
+  EXPECT_EQ(rebuilt_part.computed_cells, part.computed_cells);
+  EXPECT_GT(expect_part_of(rebuilt_part, rebuilt_whole), 0);
+  // The grown α changed some cell's flags: the rebuild is not the old model.
+  EXPECT_NE(rebuilt_whole.nonlocal->morph.purely_nonlocal, whole.nonlocal->morph.purely_nonlocal);
+}
+
+}  // namespace
+}  // namespace perimorph
