@@ -150,10 +150,10 @@ set_tests_properties(cli_run_dg0_dirichlet_on_face_set PROPERTIES
   PASS_REGULAR_EXPRESSION "strain energy [1-9][.0-9]*e-[0-9]+.*reaction on 'xmax': \\([1-9]")
 
 # `info`: the bond count, no length for a kernel without one, morphing cells
-# defined, G_c of the case's [fracture].
+# defined, G_c of the case's [fracture], the model's memory by stage.
 add_test(NAME cli_info_dg0 COMMAND ${PM_EXE} info ${PM_DG0_CASE})
 set_tests_properties(cli_info_dg0 PROPERTIES
-  PASS_REGULAR_EXPRESSION "kernel +constant, horizon delta = 1\n.*morphing: the local stiffness.*bonds +[1-9][0-9]* bonds \\(pairs of non-local points.*[0-9]+ interacting cell pairs"
+  PASS_REGULAR_EXPRESSION "kernel +constant, horizon delta = 1\n.*morphing: the local stiffness.*bonds +[1-9][0-9]* bonds \\(pairs of non-local points.*[0-9]+ interacting cell pairs.*\nmemory +the model: mesh [0-9.]+ MB, dof map [0-9.]+ MB, non-local points [0-9.]+ MB, cell graph [0-9.]+ MB, alpha at the local points [0-9.]+ MB: [1-9][0-9]* bytes per cell"
   FAIL_REGULAR_EXPRESSION "length l")
 # Tractions and body forces on DG degree 0 cells: the whole load goes to each
 # cell's one node (the loop read past it, and the program crashed).

@@ -3,6 +3,7 @@
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/diagnostics/effective_gc.hpp"
+#include "perimorph/diagnostics/model_memory.hpp"
 #include "perimorph/peridynamics/anisotropy.hpp"
 #include "perimorph/setup/critical_stretch.hpp"
 #include "perimorph/setup/discretization.hpp"
@@ -10,6 +11,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 
@@ -58,6 +60,26 @@ void append_angular(Out out, const setup::NonlocalModel& nl, int dim) {
   fmt::format_to(out, "fracture   G_c depends on the crack plane for an anisotropic kernel (not computed)\n");
 }
 
+/// The model's memory (model_memory.hpp): what a process of a distributed
+/// run holds whole, stage by stage, and per cell.
+void append_memory(std::back_insert_iterator<std::string> out, const setup::Discretization& model) {
+  const ModelMemory m = model_memory(model);
+  const auto MB = [](std::size_t b) { return static_cast<double>(b) / 1e6; };
+  const std::string nonlocal =
+      model.nonlocal ? fmt::format(
+                           ", non-local points {:.2f} MB, cell graph {:.2f} MB, alpha at the local "
+                           "points {:.2f} MB",
+                           MB(m.points), MB(m.graph), MB(m.alpha))
+                     : std::string();
+  fmt::format_to(
+      out,
+      "memory     the model: mesh {:.2f} MB, dof map {:.2f} MB{}: {:.0f} bytes per cell, held whole "
+      "by every process of a distributed run; local stiffness C {:.2f} MB{}\n",
+      MB(m.mesh), MB(m.dofs), nonlocal,
+      static_cast<double>(m.whole()) / static_cast<double>(std::max<Index>(model.mesh.num_cells(), 1)),
+      MB(m.stiffness), model.nonlocal ? " (morphed: a process holds its part's)" : "");
+}
+
 }  // namespace
 
 std::string info_report(const setup::Discretization& model, const std::string& path) {
@@ -71,6 +93,7 @@ std::string info_report(const setup::Discretization& model, const std::string& p
                  model.dofmap.num_dofs());
   if (!model.nonlocal) {
     fmt::format_to(out, "model      local only (no [nonlocal] section)\n");
+    append_memory(out, model);
     return text;
   }
   const auto& nl = *model.nonlocal;
@@ -131,6 +154,7 @@ std::string info_report(const setup::Discretization& model, const std::string& p
                    nl.points.bond_reach(nl.kernel.horizon));
   else
     fmt::format_to(out, "edge       cut-off: a bond counts iff |xi| < delta\n");
+  append_memory(out, model);
   return text;
 }
 

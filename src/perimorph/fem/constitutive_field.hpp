@@ -41,6 +41,10 @@ class ConstitutiveField {
     return data_.data() + k * static_cast<std::size_t>(nv_ * nv_);
   }
   Eigen::Map<const Eigen::MatrixXd> matrix(Index c, int q) const { return {at(c, q), nv_, nv_}; }
+  /// The bytes its arrays hold (tensors and the per-cell index).
+  std::size_t bytes() const {
+    return data_.size() * sizeof(double) + first_.size() * sizeof(Index) + per_point_.size();
+  }
 
  private:
   int dim_, nv_, npts_;
