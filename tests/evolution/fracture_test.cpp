@@ -5,9 +5,12 @@
 // W − U − D ≥ 0 after (D at s_crit); failed bonds never heal; the same bonds
 // fail with 1 and 2 threads; the failed-bonds file adds up to the CSV columns.
 
+#include "perimorph/assembly/bond_stretch.hpp"
+#include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/la/petsc_session.hpp"
+#include "perimorph/partition/partition.hpp"
 #include "perimorph/run/static_run.hpp"
 #include "perimorph/setup/boundary_conditions.hpp"
 #include "perimorph/setup/discretization.hpp"
@@ -221,6 +224,37 @@ TEST(Fracture, SameBondsFailWithOneAndTwoThreads) {
   }
   EXPECT_TRUE(any) << "no bond failed: the test would be vacuous";
   EXPECT_EQ(one.displacement, two.displacement);
+}
+
+// The interfaces of each part's cells (a process's share of the crack area,
+// issue 17), put together in cell order, are the whole list: the same pairs,
+// bond counts and failed counts, some failed.
+TEST(Fracture, InterfacesOfThePartsMakeTheWholeList) {
+  const auto model = setup::build_discretization(pulled_case(2, {1.0}, 1e-3));
+  bonds::BrokenBonds failed(model.mesh.num_cells(), model.nonlocal->points.per_cell);
+  for (Index e = 0; e < model.mesh.num_cells(); e += 5)
+    for (Index f : model.nonlocal->graph.row(e))
+      if (f > e) failed.add({e, f, 0, 1});
+  const auto space = model.nonlocal_space(&failed);
+  const auto whole = assembly::interface_bonds(space);
+  ASSERT_FALSE(whole.empty());
+  EXPECT_TRUE(std::any_of(whole.begin(), whole.end(), [](const auto& i) { return i.failed > 0; }));
+  for (int parts : {2, 3}) {
+    std::vector<assembly::InterfaceBonds> joined;
+    for (int q = 0; q < parts; ++q) {
+      const auto mine = assembly::interface_bonds(space, partition::cells_of_part(model.mesh, parts, q));
+      joined.insert(joined.end(), mine.begin(), mine.end());
+    }
+    std::stable_sort(joined.begin(), joined.end(), [](const auto& a, const auto& b) { return a.e < b.e; });
+    ASSERT_EQ(joined.size(), whole.size()) << parts;
+    for (std::size_t k = 0; k < whole.size(); ++k) {
+      EXPECT_EQ(joined[k].e, whole[k].e);
+      EXPECT_EQ(joined[k].f, whole[k].f);
+      EXPECT_EQ(joined[k].axis, whole[k].axis);
+      EXPECT_EQ(joined[k].total, whole[k].total);
+      EXPECT_EQ(joined[k].failed, whole[k].failed);
+    }
+  }
 }
 
 // [fracture] no_fail: a bond with an end in a listed region is never

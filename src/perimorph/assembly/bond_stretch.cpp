@@ -178,13 +178,14 @@ BondWeights point_bond_weights_dim(const NonlocalSpace& s) {
 }
 
 template <int D>
-std::vector<InterfaceBonds> interface_bonds_dim(const NonlocalSpace& s) {
+std::vector<InterfaceBonds> interface_bonds_dim(const NonlocalSpace& s, std::span<const char> cells) {
   PERIMORPH_ASSERT(s.mesh.structure.has_value(), "interface_bonds needs a structured box mesh");
   const auto& layout = *s.mesh.structure;
   const Index ncells = s.mesh.num_cells();
   std::vector<std::vector<InterfaceBonds>> per_cell(static_cast<std::size_t>(ncells));
 #pragma omp parallel for schedule(dynamic, 8)
   for (Index e = 0; e < ncells; ++e) {
+    if (!cells.empty() && cells[static_cast<std::size_t>(e)] == 0) continue;
     const auto a = layout.cell_ijk(e);
     auto& out = per_cell[static_cast<std::size_t>(e)];
     for_each_bond_of<D>(s, e, [&](Index f, int, int, const Vec3&, double, double, bool failed) {
@@ -237,8 +238,8 @@ std::vector<std::array<Index, 2>> bonded_pairs(const NonlocalSpace& space) {
   return dispatch_dim(space.mesh.dim(), [&](auto D) { return bonded_pairs_dim<D()>(space); });
 }
 
-std::vector<InterfaceBonds> interface_bonds(const NonlocalSpace& space) {
-  return dispatch_dim(space.mesh.dim(), [&](auto D) { return interface_bonds_dim<D()>(space); });
+std::vector<InterfaceBonds> interface_bonds(const NonlocalSpace& space, std::span<const char> cells) {
+  return dispatch_dim(space.mesh.dim(), [&](auto D) { return interface_bonds_dim<D()>(space, cells); });
 }
 
 std::vector<Vec3> point_displacements(const NonlocalSpace& s, std::span<const double> u) {

@@ -67,12 +67,14 @@ std::vector<std::array<Index, 2>> bonded_pairs(const NonlocalSpace& space);
 
 /// The bonds between each pair of face-adjacent cells of a structured mesh
 /// (cells e < f differing by one in one index), and how many have failed.
-/// Bonds crossing a cut are in neither count.
+/// Bonds crossing a cut are in neither count. In cell order e; with `cells`
+/// (a flag per cell), the pairs of the flagged cells e only (a process's
+/// share: its bonds' work falls with the number of processes).
 struct InterfaceBonds {
   Index e = 0, f = 0;
   int axis = 0;  ///< the axis normal to the shared face
   std::size_t total = 0, failed = 0;
 };
-std::vector<InterfaceBonds> interface_bonds(const NonlocalSpace& space);
+std::vector<InterfaceBonds> interface_bonds(const NonlocalSpace& space, std::span<const char> cells = {});
 
 }  // namespace perimorph::assembly

@@ -159,6 +159,27 @@ FractureFields BondFailure::fields(const RunState& state) const {
   return out;
 }
 
+std::vector<assembly::InterfaceBonds> BondFailure::broken_interfaces(const RunState& state) const {
+  std::vector<assembly::InterfaceBonds> mine = assembly::interface_bonds(space(state), decides_);
+  std::erase_if(mine, [](const auto& i) { return i.total == 0 || i.failed < i.total; });
+  if (decides_.empty()) return mine;
+  // Each process looked at the faces of its cells e: every process gets them
+  // all, in cell order (each process's in cell order, from disjoint cells).
+  std::vector<double> packed;
+  for (const auto& i : mine)
+    packed.insert(packed.end(),
+                  {static_cast<double>(i.e), static_cast<double>(i.f), static_cast<double>(i.axis)});
+  const std::vector<double> all = la::all_gather(packed);
+  std::vector<assembly::InterfaceBonds> out(all.size() / 3);
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    out[k].e = static_cast<Index>(all[3 * k]);
+    out[k].f = static_cast<Index>(all[3 * k + 1]);
+    out[k].axis = static_cast<int>(all[3 * k + 2]);
+  }
+  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.e < b.e; });
+  return out;
+}
+
 CrackArea BondFailure::crack_area(const RunState& state) const {
   CrackArea out;
   if (!disc_->mesh.structure) {
@@ -176,8 +197,7 @@ CrackArea BondFailure::crack_area(const RunState& state) const {
   };
   // Per normal axis, the positions (the other two cell indices) of the broken faces.
   std::array<std::set<std::array<Index, 2>>, 3> columns;
-  for (const auto& i : assembly::interface_bonds(space(state))) {
-    if (i.total == 0 || i.failed < i.total) continue;
+  for (const auto& i : broken_interfaces(state)) {
     out.total += face_area(i.axis);
     const auto ijk = layout.cell_ijk(i.e);
     std::array<Index, 2> key{};

@@ -108,9 +108,13 @@ class BondFailure final : public Component {
   /// Crack area from the faces between adjacent cells all of whose bonds
   /// have failed (structured meshes; 2D: length × thickness; 1D: the
   /// cross-section). Pre-crack cuts are not counted (their bonds never existed).
+  /// On several processes each looks at its cells' faces (collective).
   CrackArea crack_area(const RunState& state) const;
 
  private:
+  /// The interfaces all of whose bonds have failed, in cell order, on every
+  /// process (each process finds those of its cells e; collective).
+  std::vector<assembly::InterfaceBonds> broken_interfaces(const RunState& state) const;
   const setup::Discretization* disc_;  ///< non-owning: the run's current discretization
   double s_crit_ = 0.0;
   std::vector<char> no_fail_;  ///< per cell, 1 in a no_fail region; empty when there is none
