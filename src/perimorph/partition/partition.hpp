@@ -42,7 +42,7 @@ std::vector<char> cells_of_part(const mesh::Mesh& mesh, int parts, int part);
 
 /// The cells of part `part` and every cell sharing a mesh node with one of
 /// them, marked 1 (empty for one part): a superset of the cells with a dof
-/// node the part can own, whatever α makes CG or DG (dof_layout: a DG node
+/// node the part can own, whatever α makes CG or DG (dof_numbering: a DG node
 /// is its cell's part's, a CG node, at a mesh node, the lowest part among
 /// its cells'), so of the cells whose local stiffness the part assembles
 /// (cells_touching) and of its cells_of_part. What a process of a distributed

@@ -51,7 +51,7 @@ std::shared_ptr<const la::Distribution> distribution_over_processes(const setup:
 
 /// K spread over the processes of PETSC_COMM_WORLD: the cells cut into one
 /// part per process by partition::coordinate_bisection, the dofs laid out by
-/// partition::dof_layout. On one process, assemble_stiffness(model, broken,
+/// partition::dof_numbering. On one process, assemble_stiffness(model, broken,
 /// damage). Collective.
 AssembledStiffness assemble_stiffness_over_processes(const setup::Discretization& model,
                                                      const bonds::BrokenBonds* broken = nullptr,
