@@ -39,8 +39,9 @@ struct Discretization {
   /// A process of a distributed run computes those of its part and their
   /// neighbours through a mesh node (partition::cells_near_part): every cell
   /// whose local stiffness, strain or stress it assembles or writes. With
-  /// [nonlocal], elsewhere `stiffness` holds NaN, so that a read of it shows. The CG/DG flags and
-  /// α at the local points are those of every cell, on every process.
+  /// [nonlocal], elsewhere `stiffness` holds NaN, so that a read of it shows.
+  /// The CG/DG flags and α at the local points are those of every cell, on
+  /// every process.
   std::vector<char> computed_cells;
 
   int dim() const { return mesh.dim(); }
