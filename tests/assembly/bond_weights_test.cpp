@@ -1,16 +1,19 @@
 // Bond weights per non-local point (bond_stretch.hpp, the damage index of
 // THEORY §5): every bond counts at both its points, failed bonds also in
-// `lost`, and the sums are the same for one and two threads.
+// `lost`, the sums are the same for one and two threads, and a part's cells
+// get the whole pass's sums.
 
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/bonds/broken_bonds.hpp"
 #include "perimorph/bonds/nonlocal_points.hpp"
+#include "perimorph/partition/partition.hpp"
 #include "perimorph/setup/discretization.hpp"
 #include "support/cases.hpp"
 
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -62,6 +65,25 @@ TEST(BondWeights, EveryBondCountsAtBothPointsForAnyThreadCount) {
   EXPECT_NEAR(sum_total, 2.0 * total, 1e-12 * total);
   EXPECT_NEAR(sum_lost, 2.0 * lost, 1e-12 * lost);
   for (std::size_t k = 0; k < one.total.size(); ++k) EXPECT_LE(one.lost[k], one.total[k]);
+
+  // A part's cells (a process's piece, issue 17): the same bits at their
+  // points, nothing at the others'; the parts together are every point.
+  for (int parts : {2, 3}) {
+    std::vector<int> seen(one.total.size(), 0);
+    for (int q = 0; q < parts; ++q) {
+      const auto cells = partition::cells_of_part(model.mesh, parts, q);
+      const auto mine = assembly::point_bond_weights(space, cells);
+      for (Index e = 0; e < model.mesh.num_cells(); ++e)
+        for (int g = 0; g < nl.points.per_cell; ++g) {
+          const std::size_t k = nl.points.index(e, g);
+          const bool flagged = cells[static_cast<std::size_t>(e)] != 0;
+          seen[k] += flagged ? 1 : 0;
+          EXPECT_EQ(mine.total[k], flagged ? one.total[k] : 0.0) << parts << " " << e;
+          EXPECT_EQ(mine.lost[k], flagged ? one.lost[k] : 0.0) << parts << " " << e;
+        }
+    }
+    EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; })) << parts;
+  }
 }
 
 }  // namespace

@@ -147,7 +147,7 @@ std::vector<StretchedBond> bonds_over_dim(const NonlocalSpace& s, std::span<cons
 }
 
 template <int D>
-BondWeights point_bond_weights_dim(const NonlocalSpace& s) {
+BondWeights point_bond_weights_dim(const NonlocalSpace& s, std::span<const char> cells) {
   const auto& pts = s.points;
   BondWeights w;
   w.total.assign(pts.x.size(), 0.0);
@@ -158,6 +158,7 @@ BondWeights point_bond_weights_dim(const NonlocalSpace& s) {
   const Index ncells = s.mesh.num_cells();
 #pragma omp parallel for schedule(dynamic, 8)
   for (Index c = 0; c < ncells; ++c) {
+    if (!cells.empty() && cells[static_cast<std::size_t>(c)] == 0) continue;
     auto add = [&](std::size_t k, double v, bool failed) {
       w.total[k] += v;
       if (failed) w.lost[k] += v;
@@ -272,8 +273,8 @@ std::vector<StretchedBond> bonds_over(const NonlocalSpace& space, std::span<cons
                       [&](auto D) { return bonds_over_dim<D()>(space, u, threshold, cells); });
 }
 
-BondWeights point_bond_weights(const NonlocalSpace& space) {
-  return dispatch_dim(space.mesh.dim(), [&](auto D) { return point_bond_weights_dim<D()>(space); });
+BondWeights point_bond_weights(const NonlocalSpace& space, std::span<const char> cells) {
+  return dispatch_dim(space.mesh.dim(), [&](auto D) { return point_bond_weights_dim<D()>(space, cells); });
 }
 
 }  // namespace perimorph::assembly

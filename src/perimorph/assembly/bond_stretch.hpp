@@ -42,11 +42,13 @@ std::vector<StretchedBond> bonds_over(const NonlocalSpace& space, std::span<cons
 /// Per non-local point: Σ over its bonds of W ᾱ c_bond |ξ|² (total) and the
 /// part carried by failed bonds (lost). Damage index = lost / total (0 where
 /// total = 0). Cut bonds count in neither. Computed in parallel, the same for
-/// any thread count.
+/// any thread count. With `cells` (one flag per cell), only the points of the
+/// flagged cells are summed, each the same bits as in the whole pass (a cell
+/// reads its own graph row only); the others' stay 0.
 struct BondWeights {
   std::vector<double> total, lost;
 };
-BondWeights point_bond_weights(const NonlocalSpace& space);
+BondWeights point_bond_weights(const NonlocalSpace& space, std::span<const char> cells = {});
 
 /// The bonds of the space: unordered pairs of non-local points with
 /// ᾱ c_bond > 0 not crossing a cut, failed ones included (the bonds of the

@@ -145,10 +145,11 @@ FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bon
 FractureFields BondFailure::fields(const RunState& state) const {
   FractureFields out;
   out.dissipated = state.cell_dissipated;
-  const auto w = assembly::point_bond_weights(space(state));
+  const auto w = assembly::point_bond_weights(space(state), decides_);
   const auto& pts = disc_->nonlocal->points;
-  out.damage.assign(state.cell_dissipated.size(), 0.0);
+  out.damage.assign(state.cell_dissipated.size(), std::nan(""));
   for (Index c = 0; c < disc_->mesh.num_cells(); ++c) {
+    if (!decides_.empty() && decides_[static_cast<std::size_t>(c)] == 0) continue;
     double d = 0.0;
     for (int q = 0; q < pts.per_cell; ++q) {
       const std::size_t k = pts.index(c, q);

@@ -104,6 +104,8 @@ class BondFailure final : public Component {
   void shape_of(const assembly::StretchedBond& b, BondShape& out) const;
 
   /// Damage index and dissipated energy (at s_crit) per cell, for the VTU.
+  /// On several processes the damage index is that of the cells of this
+  /// process's part (the cells of its piece), NaN elsewhere.
   FractureFields fields(const RunState& state) const;
   /// Crack area from the faces between adjacent cells all of whose bonds
   /// have failed (structured meshes; 2D: length × thickness; 1D: the
