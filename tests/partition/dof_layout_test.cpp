@@ -15,7 +15,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
+#include <limits>
 #include <set>
 
 namespace perimorph {
@@ -101,7 +103,19 @@ TEST(DofLayout, OwnerComputesGivesTheSerialRowsBitForBit) {
   const int dim = m.dim();
   testing::DenseInserter serial(n);
   assembly::assemble_elasticity(m.local_space(), m.stiffness, serial);
-  assembly::assemble_nonlocal(m.nonlocal_space(), serial);
+  // The whole graph's answers to the two reductions of the translation cache
+  // (NonlocalOptions::min_over_processes): its largest offset, each key's
+  // first pair.
+  std::vector<std::vector<long long>> whole;
+  assembly::NonlocalOptions recording;
+  recording.min_over_processes = [&](std::vector<long long> v) {
+    whole.push_back(v);
+    return v;
+  };
+  assembly::assemble_nonlocal(m.nonlocal_space(), serial, recording);
+  ASSERT_EQ(whole.size(), 2u);
+  std::vector<long long> first_over_parts(whole[1].size(), std::numeric_limits<long long>::max());
+  bool later_first = false;  // a part whose first pair of a key is not the whole graph's
   const auto p = partition::coordinate_bisection(m.mesh, 3);
   const auto layout = partition::dof_layout(m.dofmap, p, m.nonlocal->graph);
   Eigen::MatrixXd rows = Eigen::MatrixXd::Constant(n, n, -1.0);
@@ -113,7 +127,20 @@ TEST(DofLayout, OwnerComputesGivesTheSerialRowsBitForBit) {
     assembly::assemble_elasticity(m.local_space(), m.stiffness, part,
                                   [&](Index c) { return touching[static_cast<std::size_t>(c)] != 0; });
     assembly::NonlocalOptions only_touching;
-    only_touching.cache_from_all_pairs = true;
+    // The reduction over the parts, simulated: the part's first pairs, no
+    // earlier than the whole graph's, are kept for the minimum below, and the
+    // whole graph's answer is given back.
+    int call = 0;
+    only_touching.min_over_processes = [&](std::vector<long long> v) {
+      EXPECT_EQ(v.size(), whole[static_cast<std::size_t>(call)].size()) << q << " " << call;
+      if (call == 1 && v.size() == first_over_parts.size())
+        for (std::size_t k = 0; k < v.size(); ++k) {
+          EXPECT_GE(v[k], whole[1][k]) << q << " " << k;
+          later_first |= v[k] > whole[1][k] && v[k] != std::numeric_limits<long long>::max();
+          first_over_parts[k] = std::min(first_over_parts[k], v[k]);
+        }
+      return whole[static_cast<std::size_t>(call++)];
+    };
     only_touching.include_pair = [&](Index e, Index f) {
       return touching[static_cast<std::size_t>(e)] != 0 || touching[static_cast<std::size_t>(f)] != 0;
     };
@@ -122,6 +149,13 @@ TEST(DofLayout, OwnerComputesGivesTheSerialRowsBitForBit) {
       if (owns(r / dim)) rows.row(r) = part.A.row(r);
     for (char t : touching) cells_computed += t != 0;
   }
+  // Every key's first pair is some part's first; the cache is used, and the
+  // reduction matters (a part alone would pick another pair).
+  EXPECT_EQ(first_over_parts, whole[1]);
+  EXPECT_GT(std::count_if(whole[1].begin(), whole[1].end(),
+                          [](long long v) { return v != std::numeric_limits<long long>::max(); }),
+            0);
+  EXPECT_TRUE(later_first);
   // Every row from its owner, summed from the same blocks in the same order.
   EXPECT_TRUE((rows.array() == serial.A.array()).all())
       << "max difference " << (rows - serial.A).cwiseAbs().maxCoeff();

@@ -15,6 +15,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -34,6 +36,43 @@ struct PairTask {
 using OffsetKey = std::array<long, 5>;
 
 constexpr int max_points = 216;
+
+/// NonlocalOptions::min_over_processes: each key's representative becomes the
+/// first pair (e, f), e ≤ f, in the whole graph's order, the smallest e·N + f
+/// over the processes. A slot per key (offset and node counts) in a box of
+/// offsets every process agrees on, so the reduction's size does not grow with
+/// the processes.
+void first_pairs_over_processes(const std::map<OffsetKey, long>& cache_index,
+                                std::vector<std::pair<Index, Index>>& representatives, Index ncells, int dim,
+                                const NonlocalOptions& options) {
+  long reach = 0;
+  for (const auto& entry : cache_index)
+    for (int a = 0; a < 3; ++a) reach = std::max(reach, std::abs(entry.first[static_cast<std::size_t>(a)]));
+  reach = -options.min_over_processes({-static_cast<long long>(reach)}).front();
+  const long width = 2 * reach + 1, nodes = peridynamics::max_cell_nodes;
+  auto slot = [&](const OffsetKey& k) {
+    long s = 0;
+    for (int a = 0; a < dim; ++a) s = s * width + k[static_cast<std::size_t>(a)] + reach;
+    for (int a = dim; a < 3; ++a)
+      PERIMORPH_ASSERT(k[static_cast<std::size_t>(a)] == 0, "an offset off the grid");
+    PERIMORPH_ASSERT(k[3] >= 1 && k[3] <= nodes && k[4] >= 1 && k[4] <= nodes, "a cell with too many nodes");
+    return static_cast<std::size_t>((s * nodes + k[3] - 1) * nodes + k[4] - 1);
+  };
+  long slots = nodes * nodes;
+  for (int a = 0; a < dim; ++a) slots *= width;
+  const auto none = std::numeric_limits<long long>::max();
+  std::vector<long long> first(static_cast<std::size_t>(slots), none);
+  for (const auto& [key, r] : cache_index) {
+    const auto& [e, f] = representatives[static_cast<std::size_t>(r)];
+    first[slot(key)] = static_cast<long long>(e) * ncells + f;
+  }
+  first = options.min_over_processes(std::move(first));
+  for (const auto& [key, r] : cache_index) {
+    const long long pair = first[slot(key)];
+    representatives[static_cast<std::size_t>(r)] = {static_cast<Index>(pair / ncells),
+                                                    static_cast<Index>(pair % ncells)};
+  }
+}
 
 /// One cell's quadrature points, recomputed (the plain version); lives on the
 /// stack of the thread that computes the pair.
@@ -166,17 +205,14 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
     return use_cache && unit_pair(e, f) && !near(e, f) && broken_in(e, f).empty();
   };
   if (use_cache) {
-    std::map<OffsetKey, std::pair<Index, Index>> first_of_all;  // cache_from_all_pairs
     for (Index e = 0; e < ncells; ++e)
       for (Index f : s.graph.row(e)) {
-        if (f < e || !cacheable(e, f)) continue;
-        if (options.cache_from_all_pairs) first_of_all.emplace(key_of(e, f), std::pair{e, f});
-        if (!included(e, f)) continue;
+        if (f < e || !cacheable(e, f) || !included(e, f)) continue;
         auto [it, added] = cache_index.emplace(key_of(e, f), static_cast<long>(representatives.size()));
         if (added) representatives.emplace_back(e, f);
       }
-    if (options.cache_from_all_pairs)
-      for (auto& r : representatives) r = first_of_all.at(key_of(r.first, r.second));
+    if (options.min_over_processes)
+      first_pairs_over_processes(cache_index, representatives, ncells, D, options);
   }
   std::vector<double> cache_blocks(representatives.size() * max_block);
   std::vector<std::size_t> cache_bonds(representatives.size());

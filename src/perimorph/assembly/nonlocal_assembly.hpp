@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <vector>
 
 namespace perimorph::mesh {
 class Mesh;
@@ -83,12 +84,17 @@ struct NonlocalOptions {
   /// the contribution of some cells, for an update in place
   /// (system::ConstrainedSystem::reassemble).
   std::function<bool(Index e, Index f)> include_pair;
-  /// With include_pair and the translation cache: each cached block is
-  /// computed from the first pair of the whole graph with its offset, not the
-  /// first included one, so that the blocks do not depend on include_pair
-  /// (the distributed assembly, system/stiffness.hpp: every process adds the
-  /// serial matrix's blocks, bit for bit).
-  bool cache_from_all_pairs = false;
+  /// With include_pair and the translation cache, when the processes' included
+  /// pairs together are every pair (the distributed assembly,
+  /// system/stiffness.hpp): each cached block is computed from the first
+  /// cacheable pair of the whole graph with its key (offset and node counts),
+  /// not this process's first included one, so that every process adds the
+  /// serial matrix's blocks, bit for bit. `min_over_processes`, the
+  /// elementwise minimum over the processes (collective; la::), is called
+  /// twice: for the largest offset, then for each key's first pair (e·N + f
+  /// in a slot per key). Only this process's included pairs are read: no
+  /// pass over the whole graph.
+  std::function<std::vector<long long>(std::vector<long long>)> min_over_processes{};
 };
 
 /// K += K_nl. Pairs whose cells have α ≡ 0 are skipped. Bonds crossing a

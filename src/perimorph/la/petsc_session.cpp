@@ -157,6 +157,13 @@ int max_over_processes(int value) {
   return out;
 }
 
+std::vector<long long> min_over_processes(std::vector<long long> values) {
+  if (world_size() == 1 || values.empty()) return values;
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_LONG_LONG, MPI_MIN,
+                PETSC_COMM_WORLD);
+  return values;
+}
+
 void on_process_zero(const std::function<void()>& act) {
   // Process 0 is then the lowest (and only) process that can fail.
   on_every_process([&] {

@@ -45,6 +45,9 @@ void barrier();
 /// The largest of `value` over the ranks of PETSC_COMM_WORLD (collective;
 /// `value` itself on one rank).
 int max_over_processes(int value);
+/// The elementwise smallest of `values` over the ranks (collective; every
+/// rank passes the same length; `values` itself on one rank).
+std::vector<long long> min_over_processes(std::vector<long long> values);
 
 /// Runs `act` on process 0 alone (what it alone does in a run every process
 /// computes: writing the output) and lets every process know how it ended

@@ -19,7 +19,7 @@ double seconds_since(clock::time_point a) {
 
 /// Adds the cells for which `own_cell` holds and the pairs for which
 /// `own_pair` holds (all if empty) into out.K, and finalizes it; the pairs'
-/// blocks are those of the whole assembly (cache_from_all_pairs).
+/// blocks are those of the whole assembly (NonlocalOptions::min_over_processes).
 void assemble_into(AssembledStiffness& out, const setup::Discretization& model,
                    const bonds::BrokenBonds* broken, std::span<const double> damage,
                    const std::function<bool(Index)>& own_cell,
@@ -37,7 +37,7 @@ void assemble_into(AssembledStiffness& out, const setup::Discretization& model,
     const assembly::NonlocalSpace space = model.nonlocal_space(broken);
     assembly::NonlocalOptions options;
     options.include_pair = own_pair;
-    options.cache_from_all_pairs = true;
+    if (own_pair) options.min_over_processes = la::min_over_processes;
     out.nonlocal = assembly::assemble_nonlocal(space, out.K, options);
     out.nonlocal_seconds = seconds_since(t0);
   }
