@@ -352,7 +352,8 @@ void BM_Output(benchmark::State& state) {
       const auto area = c.failure.crack_area(c.state);
       benchmark::DoNotOptimize(area);
     } else {
-      const auto parts = evolution::find_floating_parts(s.model, c.failure.space(c.state), s.bc.dofs, {});
+      const auto parts = evolution::find_floating_parts(
+          s.model, evolution::stiffness_links(s.model, c.failure.space(c.state)), s.bc.dofs, {});
       benchmark::DoNotOptimize(parts.pins.data());
       check += parts.parts;
     }

@@ -6,10 +6,12 @@
 // error, and so is a force on a node that failures left without stiffness,
 // and a force doing work on a motion inside a cell.
 
+#include "perimorph/evolution/floating_parts.hpp"
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/evolution/part_support.hpp"
+#include "perimorph/partition/partition.hpp"
 #include "perimorph/run/static_run.hpp"
 #include "perimorph/setup/boundary_conditions.hpp"
 #include "perimorph/setup/discretization.hpp"
@@ -19,7 +21,9 @@
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <filesystem>
+#include <set>
 
 namespace perimorph {
 namespace {
@@ -130,6 +134,46 @@ TEST(FloatingParts, CutFreeHalfIsHeldWithoutForce) {
   }
   std::printf("largest deviation from the rigid motions: %.3e (of 0.004)\n", err);
   EXPECT_LT(err, 1e-10 * 0.004);
+}
+
+// The links of the parts of a partition (what each process finds from its
+// cells' graph rows, issue 17), gathered in any order, make the whole graph's
+// parts: the same floating part and the same pins, bit for bit.
+TEST(FloatingParts, LinksOfThePartsFindTheWholeGraphsParts) {
+  const auto model = setup::build_discretization(plate(false));
+  evolution::RunState state(model);
+  system::ConstrainedSystem cut = constrained_system(model);
+  state.u = jump_at_middle(model);
+  evolution::BondFailure failure(model);
+  ASSERT_GT(failure.inspect(state, cut).changes, 100u);
+  failure.apply(state, cut);
+  const auto sp = failure.space(state);
+  std::vector<Index> held(cut.bc().dofs.begin(), cut.bc().dofs.end());
+  std::sort(held.begin(), held.end());
+  const auto whole_links = evolution::stiffness_links(model, sp);
+  const auto whole = evolution::find_floating_parts(model, whole_links, held, cut.applied_force());
+  ASSERT_EQ(whole.parts, 1);
+  ASSERT_FALSE(whole.pins.empty());
+  auto roots = [](const std::vector<Index>& links) {
+    std::set<Index> r;
+    for (std::size_t k = 1; k < links.size(); k += 2) r.insert(links[k]);
+    return r.size();
+  };
+  for (int parts : {2, 3, 4}) {
+    std::vector<Index> links;
+    for (int q = parts - 1; q >= 0; --q) {
+      const auto mine = evolution::stiffness_links(model, sp, partition::cells_of_part(model.mesh, parts, q));
+      links.insert(links.end(), mine.begin(), mine.end());
+    }
+    // Alone, the parts' links join less than the whole graph's (on 3 and 4
+    // parts; 2 parts split the plate at the cut): the gathering joins them.
+    if (parts > 2) {
+      EXPECT_GT(roots(links), roots(whole_links)) << parts;
+    }
+    const auto got = evolution::find_floating_parts(model, links, held, cut.applied_force());
+    EXPECT_EQ(got.parts, whole.parts) << parts;
+    EXPECT_EQ(got.pins, whole.pins) << parts;
+  }
 }
 
 TEST(FloatingParts, UnbalancedCutFreePartIsAnError) {

@@ -10,8 +10,11 @@
 #include "perimorph/assembly/local_assembly.hpp"
 #include "perimorph/assembly/nonlocal_assembly.hpp"
 #include "perimorph/assembly/sparsity.hpp"
+#include "perimorph/bonds/broken_bonds.hpp"
+#include "perimorph/bonds/nonlocal_points.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/evolution/bond_failure.hpp"
+#include "perimorph/evolution/floating_parts.hpp"
 #include "perimorph/la/linear_solver.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/la/shell_matrix.hpp"
@@ -25,6 +28,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <Eigen/Cholesky>
+
+#include <limits>
 
 namespace perimorph {
 namespace {
@@ -291,6 +296,40 @@ TEST_P(Distributed2D3D, BondsOverAThresholdAreDecidedOnceAndGatheredInTheSerialO
     EXPECT_EQ(selected[k].stretch, serial[k].stretch);
     EXPECT_EQ(selected[k].k, serial[k].k);
   }
+}
+
+// Floating parts (evolution/floating_parts.hpp) from the links each process
+// finds in its part's cells, gathered: the serial parts and pins on every
+// process. A fully non-local (DG) plate, held at x = 0 and along x at x = 4,
+// with every bond across x = 2 failed: its right half is free along y.
+TEST(DistributedFloatingParts, GatheredLinksGiveTheSerialPartsAndPins) {
+  auto c = testing::box_case(2, {16, 8, 1}, Vec3(4.0, 2.0, 1.0), 1.0, 0.25);
+  testing::add_nonlocal(c, casefile::KernelKind::gaussian, 0.375, 0.125, 2,
+                        casefile::Discretization::discontinuous);
+  c.alpha.value = 1.0;
+  c.materials[0].nu = std::numeric_limits<double>::quiet_NaN();
+  c.dirichlet = {testing::fixed("xmin", 0), testing::fixed("xmin", 1), testing::fixed("xmax", 0, 0.004)};
+  const auto m = setup::build_discretization(c);
+  const auto& pts = m.nonlocal->points;
+  const std::vector<double> zero(static_cast<std::size_t>(m.dofmap.num_dofs()), 0.0);
+  bonds::BrokenBonds broken(m.mesh.num_cells(), pts.per_cell);
+  for (const auto& b :
+       assembly::bonds_over(m.nonlocal_space(), zero, -std::numeric_limits<double>::infinity()))
+    if ((pts.x[pts.index(b.id.e, b.id.g)].x() < 2.0) != (pts.x[pts.index(b.id.f, b.id.h)].x() < 2.0))
+      broken.add(b.id);
+  ASSERT_GT(broken.size(), 50u);
+  const auto space = m.nonlocal_space(&broken);
+  const std::vector<Index> held = setup::build_dirichlet(m).dofs;
+  const auto whole_links = evolution::stiffness_links(m, space);
+  const auto serial = evolution::find_floating_parts(m, whole_links, held, {});
+  ASSERT_EQ(serial.parts, 1);
+  const auto gathered = evolution::stiffness_links_over_processes(m, space);
+  if (la::world_size() > 1) {
+    EXPECT_NE(gathered, whole_links) << "the links were not found per process";
+  }
+  const auto distributed = evolution::find_floating_parts(m, gathered, held, {});
+  EXPECT_EQ(distributed.parts, serial.parts);
+  EXPECT_EQ(distributed.pins, serial.pins);
 }
 
 // What process 0 alone does (the output) ends the same way on every process.

@@ -99,13 +99,15 @@ bool has_intact_bond_dim(const NonlocalSpace& s, Index e, Index f) {
 }
 
 template <int D>
-std::vector<std::array<Index, 2>> bonded_pairs_dim(const NonlocalSpace& s) {
+std::vector<std::array<Index, 2>> bonded_pairs_dim(const NonlocalSpace& s, std::span<const char> cells) {
   const Index ncells = s.mesh.num_cells();
   std::vector<std::vector<std::array<Index, 2>>> per_cell(static_cast<std::size_t>(ncells));
 #pragma omp parallel for schedule(dynamic, 8)
-  for (Index e = 0; e < ncells; ++e)
+  for (Index e = 0; e < ncells; ++e) {
+    if (!cells.empty() && cells[static_cast<std::size_t>(e)] == 0) continue;
     for (Index f : s.graph.row(e))
       if (f >= e && has_intact_bond_dim<D>(s, e, f)) per_cell[static_cast<std::size_t>(e)].push_back({e, f});
+  }
   std::vector<std::array<Index, 2>> all;
   for (auto& v : per_cell) all.insert(all.end(), v.begin(), v.end());
   return all;
@@ -235,8 +237,8 @@ BondCount count_bonds(const NonlocalSpace& space) {
   return dispatch_dim(space.mesh.dim(), [&](auto D) { return count_bonds_dim<D()>(space); });
 }
 
-std::vector<std::array<Index, 2>> bonded_pairs(const NonlocalSpace& space) {
-  return dispatch_dim(space.mesh.dim(), [&](auto D) { return bonded_pairs_dim<D()>(space); });
+std::vector<std::array<Index, 2>> bonded_pairs(const NonlocalSpace& space, std::span<const char> cells) {
+  return dispatch_dim(space.mesh.dim(), [&](auto D) { return bonded_pairs_dim<D()>(space, cells); });
 }
 
 std::vector<InterfaceBonds> interface_bonds(const NonlocalSpace& space, std::span<const char> cells) {

@@ -64,8 +64,10 @@ BondCount count_bonds(const NonlocalSpace& space);
 bool has_intact_bond(const NonlocalSpace& space, Index e, Index f);
 
 /// Every cell pair {e, f} (e ≤ f, e = f included) joined by at least one
-/// intact bond, sorted. Costs one bond per pair where none has failed.
-std::vector<std::array<Index, 2>> bonded_pairs(const NonlocalSpace& space);
+/// intact bond, sorted. Costs one bond per pair where none has failed. With
+/// `cells` (one flag per cell), only the pairs whose cell e is flagged (each
+/// pair from one part of a partition; only the flagged cells' graph rows read).
+std::vector<std::array<Index, 2>> bonded_pairs(const NonlocalSpace& space, std::span<const char> cells = {});
 
 /// The bonds between each pair of face-adjacent cells of a structured mesh
 /// (cells e < f differing by one in one index), and how many have failed.

@@ -3,6 +3,8 @@
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/dofs/dof_map.hpp"
+#include "perimorph/la/petsc_session.hpp"
+#include "perimorph/partition/partition.hpp"
 
 #include <fmt/format.h>
 #include <Eigen/Dense>
@@ -77,7 +79,44 @@ struct Span {
 
 }  // namespace
 
-FloatingParts find_floating_parts(const setup::Discretization& model, const assembly::NonlocalSpace& space,
+std::vector<Index> stiffness_links(const setup::Discretization& model, const assembly::NonlocalSpace& space,
+                                   std::span<const char> cells) {
+  const auto& dm = model.dofmap;
+  const Index nn = dm.num_nodes();
+  UnionFind parts(static_cast<std::size_t>(nn));
+  std::vector<char> reached(static_cast<std::size_t>(nn), 0);
+  auto join_cell = [&](Index c, Index anchor) {
+    for (Index a : dm.cell_nodes(c)) {
+      parts.join(anchor, a);
+      reached[static_cast<std::size_t>(a)] = 1;
+    }
+  };
+  for (Index c = 0; c < model.mesh.num_cells(); ++c)
+    if ((cells.empty() || cells[static_cast<std::size_t>(c)] != 0) && model.has_local_stiffness(c))
+      join_cell(c, dm.cell_nodes(c).front());
+  for (const auto& [e, f] : assembly::bonded_pairs(space, cells)) {
+    const Index anchor = dm.cell_nodes(e).front();
+    join_cell(e, anchor);
+    join_cell(f, anchor);
+  }
+  std::vector<Index> links;
+  for (Index a = 0; a < nn; ++a)
+    if (reached[static_cast<std::size_t>(a)]) links.insert(links.end(), {a, parts.find(a)});
+  return links;
+}
+
+std::vector<Index> stiffness_links_over_processes(const setup::Discretization& disc,
+                                                  const assembly::NonlocalSpace& space) {
+  if (la::world_size() == 1) return stiffness_links(disc, space);
+  const std::vector<Index> mine =
+      stiffness_links(disc, space, partition::cells_of_part(disc.mesh, la::world_size(), la::world_rank()));
+  const std::vector<double> all = la::all_gather(std::vector<double>(mine.begin(), mine.end()));
+  std::vector<Index> links(all.size());
+  std::transform(all.begin(), all.end(), links.begin(), [](double v) { return static_cast<Index>(v); });
+  return links;
+}
+
+FloatingParts find_floating_parts(const setup::Discretization& model, std::span<const Index> links,
                                   std::span<const Index> held, std::span<const double> force) {
   const auto& dm = model.dofmap;
   const int dim = model.dim();
@@ -85,18 +124,10 @@ FloatingParts find_floating_parts(const setup::Discretization& model, const asse
   const Index nn = dm.num_nodes();
   UnionFind parts(static_cast<std::size_t>(nn));
   std::vector<char> stiff(static_cast<std::size_t>(nn), 0);
-  auto join_cell = [&](Index c, Index anchor) {
-    for (Index a : dm.cell_nodes(c)) {
-      parts.join(anchor, a);
-      stiff[static_cast<std::size_t>(a)] = 1;
-    }
-  };
-  for (Index c = 0; c < model.mesh.num_cells(); ++c)
-    if (model.has_local_stiffness(c)) join_cell(c, dm.cell_nodes(c).front());
-  for (const auto& [e, f] : assembly::bonded_pairs(space)) {
-    const Index anchor = dm.cell_nodes(e).front();
-    join_cell(e, anchor);
-    join_cell(f, anchor);
+  PERIMORPH_ASSERT(links.size() % 2 == 0, "stiffness links come in pairs");
+  for (std::size_t k = 0; k < links.size(); k += 2) {
+    parts.join(links[k], links[k + 1]);
+    stiff[static_cast<std::size_t>(links[k])] = 1;
   }
   // Nodes of each part (roots are the smallest node, so parts come in order).
   std::vector<std::vector<Index>> members;

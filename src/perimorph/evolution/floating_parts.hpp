@@ -22,14 +22,34 @@ struct FloatingParts {
   std::vector<Index> pins;  ///< dofs that, held, remove those modes (sorted)
 };
 
-/// The parts of the stiffness graph (nodes joined by a cell's local stiffness
+/// The links of the stiffness graph (nodes joined by a cell's local stiffness
 /// or by an intact bond between two cells, either of which couples every node
-/// of the cells involved) and their free rigid-body modes, given the dofs
-/// already held (`held`: prescribed or pinned before, sorted). Nodes with no
-/// stiffness at all are left out (BondFailure holds those one by one).
-/// `force`: the applied forces at load factor 1 (empty: none). Throws Error
-/// naming the part when the forces do work on one of its free modes.
-FloatingParts find_floating_parts(const setup::Discretization& model, const assembly::NonlocalSpace& space,
+/// of the cells involved) seen from the flagged cells (`cells`, one flag per
+/// cell; all if empty): the cells with a local stiffness among them and the
+/// cell pairs {e, f}, e ≤ f, joined by an intact bond with e flagged. As flat
+/// pairs (node, root), one per node they reach, root the smallest node it is
+/// joined to through them (itself if none). The links of the parts of a
+/// partition, together, join the nodes as the whole graph's do: a process
+/// finds the links of its part's cells, reading their graph rows only, and the
+/// processes' links are gathered (issue 17).
+std::vector<Index> stiffness_links(const setup::Discretization& model, const assembly::NonlocalSpace& space,
+                                   std::span<const char> cells = {});
+
+/// The links of the whole stiffness graph, on every process: on several, each
+/// finds those of its part's cells (partition::cells_of_part, the bisection of
+/// the stretch pass: their graph rows only) and they are gathered (collective;
+/// 16 bytes a node a part reaches). On one, stiffness_links of every cell.
+std::vector<Index> stiffness_links_over_processes(const setup::Discretization& model,
+                                                  const assembly::NonlocalSpace& space);
+
+/// The parts of the stiffness graph made by `links` (stiffness_links; nodes
+/// reached by no link have no stiffness at all and are left out: BondFailure
+/// holds those one by one) and their free rigid-body modes, given the dofs
+/// already held (`held`: prescribed or pinned before, sorted). `force`: the
+/// applied forces at load factor 1 (empty: none). Throws Error naming the part
+/// when the forces do work on one of its free modes. The same parts, pins and
+/// figures for any split of the links, in any order.
+FloatingParts find_floating_parts(const setup::Discretization& model, std::span<const Index> links,
                                   std::span<const Index> held, std::span<const double> force);
 
 }  // namespace perimorph::evolution

@@ -58,7 +58,8 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
     held.insert(held.end(), detached_.begin(), detached_.end());
     held.insert(held.end(), prescribed.begin(), prescribed.end());
     std::sort(held.begin(), held.end());
-    FloatingParts parts = find_floating_parts(*disc_, space, held, applied_force);
+    FloatingParts parts =
+        find_floating_parts(*disc_, stiffness_links_over_processes(*disc_, space), held, applied_force);
     pins_ = std::move(parts.pins);
     parts_ = parts.parts;
   }
@@ -119,7 +120,8 @@ void PartSupport::rebind(const setup::Discretization& disc, RunState& state,
   held.insert(held.end(), prescribed.begin(), prescribed.end());
   std::sort(held.begin(), held.end());
   const FloatingParts parts =
-      find_floating_parts(disc, disc.nonlocal_space(&state.failed), held, system.applied_force());
+      find_floating_parts(disc, stiffness_links_over_processes(disc, disc.nonlocal_space(&state.failed)),
+                          held, system.applied_force());
   system.hold(parts.pins, false);
   std::vector<Index> cells;
   for (const auto& id : state.failed_in_order) {
