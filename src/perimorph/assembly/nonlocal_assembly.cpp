@@ -204,13 +204,33 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
   auto cacheable = [&](Index e, Index f) {
     return use_cache && unit_pair(e, f) && !near(e, f) && broken_in(e, f).empty();
   };
+  // The pairs (e, f), e ≤ f, of the rows e in [first, last), in order: from
+  // those rows, or (options.rows) from the list found in the flagged rows.
+  std::vector<std::pair<Index, Index>> listed;
+  if (!options.rows.empty()) {
+    PERIMORPH_ASSERT(static_cast<Index>(options.rows.size()) == ncells, "one row flag per cell");
+    for (Index c = 0; c < ncells; ++c)
+      if (options.rows[static_cast<std::size_t>(c)] != 0)
+        for (Index f : s.graph.row(c)) listed.push_back(std::minmax(c, f));
+    std::sort(listed.begin(), listed.end());
+    listed.erase(std::unique(listed.begin(), listed.end()), listed.end());
+  }
+  auto for_each_pair = [&](Index first, Index last, auto&& visit) {
+    if (options.rows.empty()) {
+      for (Index e = first; e < last; ++e)
+        for (Index f : s.graph.row(e))
+          if (f >= e) visit(e, f);
+      return;
+    }
+    auto it = std::lower_bound(listed.begin(), listed.end(), std::pair<Index, Index>{first, Index{0}});
+    for (; it != listed.end() && it->first < last; ++it) visit(it->first, it->second);
+  };
   if (use_cache) {
-    for (Index e = 0; e < ncells; ++e)
-      for (Index f : s.graph.row(e)) {
-        if (f < e || !cacheable(e, f) || !included(e, f)) continue;
-        auto [it, added] = cache_index.emplace(key_of(e, f), static_cast<long>(representatives.size()));
-        if (added) representatives.emplace_back(e, f);
-      }
+    for_each_pair(0, ncells, [&](Index e, Index f) {
+      if (!cacheable(e, f) || !included(e, f)) return;
+      auto [it, added] = cache_index.emplace(key_of(e, f), static_cast<long>(representatives.size()));
+      if (added) representatives.emplace_back(e, f);
+    });
     if (options.min_over_processes)
       first_pairs_over_processes(cache_index, representatives, ncells, D, options);
   }
@@ -230,14 +250,13 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
   for (Index first = 0; first < ncells; first += chunk_cells) {
     const Index last = std::min(ncells, first + chunk_cells);
     tasks.clear();
-    for (Index e = first; e < last; ++e) {
-      const double amax_e = pts.cell_alpha_max[static_cast<std::size_t>(e)];
-      for (Index f : s.graph.row(e)) {
-        if (f < e) continue;
-        if (amax_e + pts.cell_alpha_max[static_cast<std::size_t>(f)] <= 0.0 || !included(e, f)) continue;
-        tasks.push_back({e, f, cacheable(e, f) ? cache_index.at(key_of(e, f)) : -1});
-      }
-    }
+    for_each_pair(first, last, [&](Index e, Index f) {
+      if (pts.cell_alpha_max[static_cast<std::size_t>(e)] + pts.cell_alpha_max[static_cast<std::size_t>(f)] <=
+              0.0 ||
+          !included(e, f))
+        return;
+      tasks.push_back({e, f, cacheable(e, f) ? cache_index.at(key_of(e, f)) : -1});
+    });
     blocks.resize(tasks.size() * max_block);
     bonds.assign(tasks.size(), 0);
     // No parallel region for a chunk served entirely by the cache: its barrier

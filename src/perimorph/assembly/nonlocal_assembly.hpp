@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <span>
 #include <vector>
 
 namespace perimorph::mesh {
@@ -84,6 +85,12 @@ struct NonlocalOptions {
   /// the contribution of some cells, for an update in place
   /// (system::ConstrainedSystem::reassemble).
   std::function<bool(Index e, Index f)> include_pair;
+  /// With include_pair: the cells whose graph rows hold every included pair
+  /// (one flag per cell; empty: every row is read). Only their rows are read,
+  /// each pair found from either end, and the pairs are taken in the same
+  /// order as from every row (e, then f): a process of a distributed run reads
+  /// the rows of the cells it assembles (system/stiffness.hpp).
+  std::span<const char> rows{};
   /// With include_pair and the translation cache, when the processes' included
   /// pairs together are every pair (the distributed assembly,
   /// system/stiffness.hpp): each cached block is computed from the first

@@ -38,6 +38,20 @@ CellGraph CellGraph::from_pairs(Index num_cells, std::span<const std::pair<Index
   return g;
 }
 
+CellGraph CellGraph::rows_of(std::span<const char> cells) const {
+  assert(static_cast<Index>(cells.size()) == num_cells());
+  CellGraph g;
+  g.offsets.assign(offsets.size(), 0);
+  for (Index c = 0; c < num_cells(); ++c) {
+    if (cells[static_cast<std::size_t>(c)] != 0) {
+      const auto r = row(c);
+      g.neighbors.insert(g.neighbors.end(), r.begin(), r.end());
+    }
+    g.offsets[static_cast<std::size_t>(c) + 1] = static_cast<Index>(g.neighbors.size());
+  }
+  return g;
+}
+
 std::size_t CellGraph::num_pairs() const {
   std::size_t n = 0;
   for (Index e = 0; e < num_cells(); ++e)
@@ -111,7 +125,8 @@ CellGraph find_cell_neighbors(const mesh::Mesh& mesh, const CellBoxes& boxes, do
   // adjacent bins.
   const double bin = horizon + extent;
   const auto box = mesh.bounding_box();
-  const Vec3 box_lo = box.first, box_hi = box.second;  // (a lambda below uses them: clang < 16 cannot capture bindings)
+  const Vec3 box_lo = box.first,
+             box_hi = box.second;  // (a lambda below uses them: clang < 16 cannot capture bindings)
   std::array<long, 3> nbins{1, 1, 1};
   for (int d = 0; d < dim; ++d)
     nbins[static_cast<std::size_t>(d)] =

@@ -37,6 +37,10 @@ struct CellGraph {
   static CellGraph diagonal(Index num_cells);
   /// The diagonal graph plus the given pairs, in both directions.
   static CellGraph from_pairs(Index num_cells, std::span<const std::pair<Index, Index>> pairs);
+  /// The rows of the flagged cells (one flag per cell), the others empty: what
+  /// a process of a distributed run needs of the graph (issue 17); a reader of
+  /// only the flagged rows gets the same from it as from the whole graph.
+  CellGraph rows_of(std::span<const char> cells) const;
 };
 
 /// One axis-aligned box per cell (lo, hi) containing every point of the cell

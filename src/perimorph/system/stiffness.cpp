@@ -17,27 +17,30 @@ double seconds_since(clock::time_point a) {
   return std::chrono::duration<double>(clock::now() - a).count();
 }
 
-/// Adds the cells for which `own_cell` holds and the pairs for which
-/// `own_pair` holds (all if empty) into out.K, and finalizes it; the pairs'
-/// blocks are those of the whole assembly (NonlocalOptions::min_over_processes).
+/// Adds the flagged cells (`cells`, one flag per cell; all if empty) and the
+/// cell pairs with a flagged cell, found in the flagged cells' graph rows, into
+/// out.K, and finalizes it; the pairs' blocks are those of the whole assembly
+/// (NonlocalOptions::min_over_processes).
 void assemble_into(AssembledStiffness& out, const setup::Discretization& model,
                    const bonds::BrokenBonds* broken, std::span<const double> damage,
-                   const std::function<bool(Index)>& own_cell,
-                   const std::function<bool(Index, Index)>& own_pair) {
+                   std::span<const char> cells) {
+  auto flagged = [&](Index c) { return cells.empty() || cells[static_cast<std::size_t>(c)] != 0; };
   auto t0 = clock::now();
   const bool damaged = model.damage && !damage.empty();
   const fem::ConstitutiveField C = damaged ? setup::damaged_stiffness(model.stiffness, *model.damage, damage)
                                            : fem::ConstitutiveField(0, 0, 0);
-  assembly::assemble_elasticity(model.local_space(), damaged ? C : model.stiffness, out.K, [&](Index c) {
-    return model.has_local_stiffness(c) && (!own_cell || own_cell(c));
-  });
+  assembly::assemble_elasticity(model.local_space(), damaged ? C : model.stiffness, out.K,
+                                [&](Index c) { return model.has_local_stiffness(c) && flagged(c); });
   out.local_seconds = seconds_since(t0);
   if (model.nonlocal) {
     t0 = clock::now();
     const assembly::NonlocalSpace space = model.nonlocal_space(broken);
     assembly::NonlocalOptions options;
-    options.include_pair = own_pair;
-    if (own_pair) options.min_over_processes = la::min_over_processes;
+    if (!cells.empty()) {
+      options.include_pair = [&](Index e, Index f) { return flagged(e) || flagged(f); };
+      options.rows = cells;
+      options.min_over_processes = la::min_over_processes;
+    }
     out.nonlocal = assembly::assemble_nonlocal(space, out.K, options);
     out.nonlocal_seconds = seconds_since(t0);
   }
@@ -52,7 +55,7 @@ AssembledStiffness assemble_stiffness(const setup::Discretization& model, const 
   const bonds::CellGraph* graph = model.nonlocal ? &model.nonlocal->graph : nullptr;
   AssembledStiffness out{la::Matrix(assembly::build_sparsity(model.dofmap, graph)), {}, 0.0, 0.0, 0.0};
   out.setup_seconds = seconds_since(t0);
-  assemble_into(out, model, broken, damage, {}, {});
+  assemble_into(out, model, broken, damage, {});
   return out;
 }
 
@@ -80,11 +83,7 @@ AssembledStiffness assemble_stiffness(const setup::Discretization& model,
         !touching[static_cast<std::size_t>(c)] || model.computed_cells[static_cast<std::size_t>(c)],
         "a process assembles a cell whose morphed C it did not compute");
   out.setup_seconds = seconds_since(t0);
-  assemble_into(
-      out, model, broken, damage, [&](Index c) { return touching[static_cast<std::size_t>(c)] != 0; },
-      [&](Index e, Index f) {
-        return touching[static_cast<std::size_t>(e)] != 0 || touching[static_cast<std::size_t>(f)] != 0;
-      });
+  assemble_into(out, model, broken, damage, touching);
   return out;
 }
 
