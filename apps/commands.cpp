@@ -155,10 +155,11 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
   // After PETSc's initialization (which installs its own handlers): SIGINT and
   // SIGTERM stop the run between solves, its files in step.
   perimorph::install_stop_handlers();
-  // Each process computes the morphed C of the cells near its part only.
-  const auto model =
-      perimorph::setup::build_discretization(config, [&](const std::string& phase) { progress.phase(phase); },
-                                             {perimorph::la::world_size(), perimorph::la::world_rank()});
+  // Each process computes the morphed C and the CG/DG flags of the cells near its part only.
+  const auto model = perimorph::setup::build_discretization(
+      config, [&](const std::string& phase) { progress.phase(phase); },
+      {perimorph::la::world_size(), perimorph::la::world_rank(),
+       [](std::vector<char> flags) { return perimorph::la::max_over_processes(std::move(flags)); }});
   const auto summary =
       perimorph::run::run_static(model, {out_dir, quiet, &progress, restart, checkpoint_every});
   progress.finish();

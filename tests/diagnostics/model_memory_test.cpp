@@ -1,5 +1,6 @@
 // The model's memory by stage (diagnostics/model_memory.hpp): a process's
-// part holds the same whole stages as one process and less of the morphed C;
+// part holds the same whole stages as one process and less of the morphed C
+// and the cell graph;
 // the whole stages grow with the mesh, the cell graph by its rows.
 
 #include "perimorph/diagnostics/model_memory.hpp"
@@ -9,6 +10,8 @@
 #include "support/cases.hpp"
 
 #include <gtest/gtest.h>
+
+#include <vector>
 
 namespace perimorph {
 namespace {
@@ -22,15 +25,18 @@ casefile::CaseConfig ball(Index cells_x) {
   return c;
 }
 
-TEST(ModelMemory, APartHoldsTheWholeStagesAndLessOfTheMorphedC) {
+TEST(ModelMemory, APartHoldsTheWholeStagesAndLessOfTheMorphedCAndGraph) {
   const auto whole = setup::build_discretization(ball(6));
-  const auto part = setup::build_discretization(ball(6), {}, {2, 1});
+  // The other part's flags, as the processes would share them (ModelPart).
+  const auto flags = [&](std::vector<char>) { return whole.nonlocal->morph.purely_nonlocal; };
+  const auto part = setup::build_discretization(ball(6), {}, {2, 1, flags});
   const auto w = diagnostics::model_memory(whole), p = diagnostics::model_memory(part);
   EXPECT_GT(w.mesh, 0u);
   EXPECT_GT(w.points, 0u);
   EXPECT_GT(w.stiffness, 0u);
   EXPECT_EQ(p.whole(), w.whole());
   EXPECT_LT(p.stiffness, w.stiffness);
+  EXPECT_LT(p.graph, w.graph);
   // One Index per directed cell pair and per cell boundary of the rows.
   const auto& g = whole.nonlocal->graph;
   EXPECT_EQ(w.graph, (g.offsets.size() + g.neighbors.size()) * sizeof(Index));

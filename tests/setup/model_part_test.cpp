@@ -17,8 +17,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <string>
 
 namespace perimorph {
@@ -53,8 +55,13 @@ Index expect_part_of(const setup::Discretization& part, const setup::Discretizat
   const auto& wm = whole.nonlocal->morph;
   EXPECT_EQ(pm.purely_nonlocal, wm.purely_nonlocal);
   EXPECT_EQ(pm.alpha, wm.alpha);
-  EXPECT_EQ(part.nonlocal->graph.offsets, whole.nonlocal->graph.offsets);
-  EXPECT_EQ(part.nonlocal->graph.neighbors, whole.nonlocal->graph.neighbors);
+  // The graph rows of the computed cells, the others empty.
+  const bonds::CellGraph rows = whole.nonlocal->graph.rows_of(part.computed_cells);
+  EXPECT_EQ(part.nonlocal->graph.offsets, rows.offsets);
+  EXPECT_EQ(part.nonlocal->graph.neighbors, rows.neighbors);
+  if (!whole.nonlocal->graph.neighbors.empty()) {  // (the flagship starts with α = 0: no pair)
+    EXPECT_LT(part.nonlocal->graph.neighbors.size(), whole.nonlocal->graph.neighbors.size());
+  }
   EXPECT_EQ(part.dofmap.num_nodes(), whole.dofmap.num_nodes());
   const int nv2 = part.stiffness.voigt() * part.stiffness.voigt();
   Index absent = 0;
@@ -77,6 +84,26 @@ Index expect_part_of(const setup::Discretization& part, const setup::Discretizat
   return absent;
 }
 
+/// ModelPart::share_flags, simulated on one process: each part's own flags
+/// (the computed cells', 0 elsewhere) are checked against the whole model's
+/// and kept for their maximum over the parts; the whole model's flags are
+/// given back, as the maximum over the processes would be.
+struct SharedFlags {
+  const std::vector<char>* whole = nullptr;
+  std::vector<char> over_parts;  // the elementwise maximum of the parts' own flags
+  std::function<std::vector<char>(std::vector<char>)> share() {
+    return [this](std::vector<char> mine) {
+      EXPECT_EQ(mine.size(), whole->size());
+      if (over_parts.empty()) over_parts.assign(mine.size(), 0);
+      for (std::size_t c = 0; c < mine.size() && c < whole->size(); ++c) {
+        EXPECT_LE(mine[c], (*whole)[c]) << "cell " << c;
+        over_parts[c] = std::max(over_parts[c], mine[c]);
+      }
+      return *whole;
+    };
+  }
+};
+
 TEST(ModelPart, APartComputesTheCellsItAssemblesBitForBitAndNoOthers) {
   for (const auto& [name, config] : cases()) {
     SCOPED_TRACE(name);
@@ -90,8 +117,9 @@ TEST(ModelPart, APartComputesTheCellsItAssemblesBitForBitAndNoOthers) {
       const auto p = partition::coordinate_bisection(whole.mesh, parts);
       const auto layout = partition::dof_layout(whole.dofmap, p, whole.nonlocal->graph);
       Index computed_total = 0;
+      SharedFlags flags{&whole.nonlocal->morph.purely_nonlocal, {}};
       for (int q = 0; q < parts; ++q) {
-        const auto part = setup::build_discretization(config, {}, {parts, q});
+        const auto part = setup::build_discretization(config, {}, {parts, q, flags.share()});
         ASSERT_EQ(part.computed_cells.size(), static_cast<std::size_t>(ncells));
         const Index absent = expect_part_of(part, whole);
         EXPECT_GT(absent, 0) << "part " << q << " computed every cell's C";
@@ -104,6 +132,8 @@ TEST(ModelPart, APartComputesTheCellsItAssemblesBitForBitAndNoOthers) {
               << "part " << q << " assembles or owns cell " << c << " without its C";
         }
       }
+      // Every flag is decided by the part that computes its cell.
+      EXPECT_EQ(flags.over_parts, whole.nonlocal->morph.purely_nonlocal);
       // Near a boundary cells are computed twice, but not every cell on every part.
       EXPECT_GE(computed_total, ncells);
       EXPECT_LT(computed_total, static_cast<Index>(parts) * ncells);
@@ -115,13 +145,17 @@ TEST(ModelPart, APartComputesTheCellsItAssemblesBitForBitAndNoOthers) {
 
 TEST(ModelPart, ARebuildForAGrownAlphaKeepsThePart) {
   const auto config = testing::mixed_cg_dg_plate();
-  const auto part = setup::build_discretization(config, {}, {3, 1});
   const auto whole = setup::build_discretization(config);
   auto wide = config;
   wide.alpha.regions.front().radius += 1.5;
   const auto grown = setup::make_alpha_field(wide);
-  const auto rebuilt_part = setup::rebuild_for_alpha(part, grown);
   const auto rebuilt_whole = setup::rebuild_for_alpha(whole, grown);
+  SharedFlags flags{&whole.nonlocal->morph.purely_nonlocal, {}};
+  const auto part = setup::build_discretization(config, {}, {3, 1, flags.share()});
+  flags.whole = &rebuilt_whole.nonlocal->morph.purely_nonlocal;  // the rebuild shares the grown model's
+  flags.over_parts.clear();
+  const auto rebuilt_part = setup::rebuild_for_alpha(part, grown);
+  EXPECT_FALSE(flags.over_parts.empty()) << "the rebuild did not share its flags";
   EXPECT_EQ(rebuilt_part.computed_cells, part.computed_cells);
   EXPECT_GT(expect_part_of(rebuilt_part, rebuilt_whole), 0);
   // The grown α changed some cell's flags: the rebuild is not the old model.

@@ -92,7 +92,9 @@ MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::Qu
                                  const bonds::NonlocalPoints& points, const bonds::CellGraph& graph,
                                  const peridynamics::Micromodulus& kernel, const alpha::AlphaField& alpha,
                                  const Eigen::MatrixXd& C0, CouplingRule rule_kind,
-                                 fem::ConstitutiveField& field, std::span<const char> computed) {
+                                 fem::ConstitutiveField& field, std::span<const char> computed,
+                                 const std::function<std::vector<char>(std::vector<char>)>& share_flags) {
+  PERIMORPH_ASSERT(computed.empty() || share_flags, "a model part needs the other parts' flags");
   const Index ncells = mesh.num_cells();
   const int nq = static_cast<int>(rule.size());
   const int nv = fem::voigt_size(mesh.dim());
@@ -121,14 +123,7 @@ MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::Qu
 
 #pragma omp parallel for schedule(dynamic, 16)
   for (Index c = 0; c < ncells; ++c) {
-    // Range of α over the horizon (neighbour cells' points) and the cell's local points.
-    double amin = 1.0, amax = 0.0;
-    for (Index f : graph.row(c)) {
-      amin = std::min(amin, points.cell_alpha_min[static_cast<std::size_t>(f)]);
-      amax = std::max(amax, points.cell_alpha_max[static_cast<std::size_t>(f)]);
-    }
-    // α at the local points: whether C must be computed to tell a purely
-    // non-local cell (α = 1 everywhere on the cell, C = 0 unless the horizon's α is lower).
+    // α at the local points: a purely non-local cell has α = 1 at all of them (and C = 0).
     bool all_one = true;
     const std::size_t first = static_cast<std::size_t>(c) * static_cast<std::size_t>(nq);
     for (int q = 0; q < nq; ++q) {
@@ -136,12 +131,15 @@ MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::Qu
       out.alpha[first + static_cast<std::size_t>(q)] = a;
       all_one = all_one && a == 1.0;
     }
-    const bool wanted = computed.empty() || computed[static_cast<std::size_t>(c)] != 0;
-    if (!wanted && !(all_one && rule_kind == CouplingRule::morphing && amin < 1.0)) {
-      absent[static_cast<std::size_t>(c)] = 1;  // α alone decides: purely non-local iff α ≡ 1 around
-      out.purely_nonlocal[static_cast<std::size_t>(c)] =
-          all_one && (rule_kind == CouplingRule::partition || amin == 1.0) ? 1 : 0;
+    if (!computed.empty() && computed[static_cast<std::size_t>(c)] == 0) {
+      absent[static_cast<std::size_t>(c)] = 1;  // its flag comes from share_flags
       continue;
+    }
+    // Range of α over the horizon (neighbour cells' points).
+    double amin = 1.0, amax = 0.0;
+    for (Index f : graph.row(c)) {
+      amin = std::min(amin, points.cell_alpha_min[static_cast<std::size_t>(f)]);
+      amax = std::max(amax, points.cell_alpha_max[static_cast<std::size_t>(f)]);
     }
     std::vector<Eigen::MatrixXd> C(static_cast<std::size_t>(nq));
     bool uniform = true, all_zero = true;
@@ -161,11 +159,10 @@ MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::Qu
     }
     if (all_zero && all_one)
       out.purely_nonlocal[static_cast<std::size_t>(c)] = 1;
-    else if (!wanted)
-      absent[static_cast<std::size_t>(c)] = 1;
     else if (!uniform)
       per_point[static_cast<std::size_t>(c)] = std::move(C);
   }
+  if (!computed.empty()) out.purely_nonlocal = share_flags(std::move(out.purely_nonlocal));
   for (Index c = 0; c < ncells; ++c) {
     auto& C = per_point[static_cast<std::size_t>(c)];
     if (out.purely_nonlocal[static_cast<std::size_t>(c)])

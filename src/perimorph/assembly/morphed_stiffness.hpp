@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -58,14 +59,18 @@ Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const
 /// Fills `field` (sized for `rule`) with C(x) for every cell marked in
 /// `computed` (every cell if empty), from the reference stiffness C0 (Voigt,
 /// model dimension); the other cells get NaN, unless purely non-local (0).
-/// α and the purely non-local flags are those of every cell, the same
-/// whatever is computed: a cell with α = 1 at every local point whose C is
-/// not 0 by its horizon's α alone has its C computed all the same, to decide.
-/// `graph` must hold, for each cell, every cell within the horizon.
+/// α at the local points is every cell's. The purely non-local flags are
+/// decided for the computed cells (C = 0 and α = 1 at every local point) and
+/// the others' are 0 until `share_flags` (required with `computed`: the
+/// elementwise maximum over the processes, collective) brings them from the
+/// processes that compute them, every cell being computed by one. `graph`
+/// must hold, for each computed cell, every cell within the horizon; the
+/// other cells' rows are not read.
 MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::QuadraturePoint> rule,
                                  const bonds::NonlocalPoints& points, const bonds::CellGraph& graph,
                                  const peridynamics::Micromodulus& kernel, const alpha::AlphaField& alpha,
                                  const Eigen::MatrixXd& C0, CouplingRule rule_kind,
-                                 fem::ConstitutiveField& field, std::span<const char> computed = {});
+                                 fem::ConstitutiveField& field, std::span<const char> computed = {},
+                                 const std::function<std::vector<char>(std::vector<char>)>& share_flags = {});
 
 }  // namespace perimorph::assembly

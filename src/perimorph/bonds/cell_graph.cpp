@@ -109,11 +109,13 @@ CellGraph find_cell_neighbors(const mesh::Mesh& mesh, double reach,
 }
 
 CellGraph find_cell_neighbors(const mesh::Mesh& mesh, const CellBoxes& boxes, double reach,
-                              const std::function<bool(Index, Index)>& keep) {
+                              const std::function<bool(Index, Index)>& keep,
+                              std::span<const char> rows_wanted) {
   const int dim = mesh.dim();
   const Index ncells = mesh.num_cells();
   PERIMORPH_ASSERT(boxes.lo.size() == static_cast<std::size_t>(ncells) && boxes.hi.size() == boxes.lo.size(),
                    "one box per cell");
+  PERIMORPH_ASSERT(rows_wanted.empty() || rows_wanted.size() == boxes.lo.size(), "one row flag per cell");
   const auto& lo = boxes.lo;
   const auto& hi = boxes.hi;
   const double horizon = reach;
@@ -159,6 +161,7 @@ CellGraph find_cell_neighbors(const mesh::Mesh& mesh, const CellBoxes& boxes, do
   std::vector<std::vector<Index>> rows(static_cast<std::size_t>(ncells));
 #pragma omp parallel for schedule(dynamic, 64)
   for (Index e = 0; e < ncells; ++e) {
+    if (!rows_wanted.empty() && rows_wanted[static_cast<std::size_t>(e)] == 0) continue;
     const auto b = cell_bin[static_cast<std::size_t>(e)];
     auto& row = rows[static_cast<std::size_t>(e)];
     for (long k = (dim > 2 ? -1 : 0); k <= (dim > 2 ? 1 : 0); ++k)

@@ -59,9 +59,12 @@ CellBoxes point_boxes(const mesh::Mesh& mesh, std::span<const Vec3> reference_po
 
 /// Pairs of cells whose closed boxes are closer than `reach` (the largest
 /// separation that carries a bond), kept only if `keep(E, F)` holds (all pairs
-/// if empty). Cell lists on the boxes' centres: no all-pairs loop.
+/// if empty). Cell lists on the boxes' centres: no all-pairs loop. With
+/// `rows` (one flag per cell), the rows of the flagged cells only, the others
+/// empty (CellGraph::rows_of of the whole graph, without building it).
 CellGraph find_cell_neighbors(const mesh::Mesh& mesh, const CellBoxes& boxes, double reach,
-                              const std::function<bool(Index, Index)>& keep = {});
+                              const std::function<bool(Index, Index)>& keep = {},
+                              std::span<const char> rows = {});
 
 /// The same with node_boxes.
 CellGraph find_cell_neighbors(const mesh::Mesh& mesh, double reach,

@@ -66,18 +66,22 @@ void append_memory(std::back_insert_iterator<std::string> out, const setup::Disc
   const ModelMemory m = model_memory(model);
   const auto MB = [](std::size_t b) { return static_cast<double>(b) / 1e6; };
   const std::string nonlocal =
-      model.nonlocal ? fmt::format(
-                           ", non-local points {:.2f} MB, cell graph {:.2f} MB, alpha at the local "
-                           "points {:.2f} MB",
-                           MB(m.points), MB(m.graph), MB(m.alpha))
+      model.nonlocal ? fmt::format(", non-local points {:.2f} MB, alpha at the local points {:.2f} MB",
+                                   MB(m.points), MB(m.alpha))
                      : std::string();
+  const std::string part =
+      model.nonlocal ? fmt::format(
+                           "cell graph {:.2f} MB and local stiffness C {:.2f} MB, of which a process "
+                           "holds its part's (the graph rows and morphed C of its cells and their "
+                           "node neighbours)",
+                           MB(m.graph), MB(m.stiffness))
+                     : fmt::format("local stiffness C {:.2f} MB", MB(m.stiffness));
   fmt::format_to(
       out,
       "memory     the model: mesh {:.2f} MB, dof map {:.2f} MB{}: {:.0f} bytes per cell, held whole "
-      "by every process of a distributed run; local stiffness C {:.2f} MB{}\n",
+      "by every process of a distributed run; {}\n",
       MB(m.mesh), MB(m.dofs), nonlocal,
-      static_cast<double>(m.whole()) / static_cast<double>(std::max<Index>(model.mesh.num_cells(), 1)),
-      MB(m.stiffness), model.nonlocal ? " (morphed: a process holds its part's)" : "");
+      static_cast<double>(m.whole()) / static_cast<double>(std::max<Index>(model.mesh.num_cells(), 1)), part);
 }
 
 }  // namespace

@@ -48,6 +48,9 @@ int max_over_processes(int value);
 /// The elementwise smallest of `values` over the ranks (collective; every
 /// rank passes the same length; `values` itself on one rank).
 std::vector<long long> min_over_processes(std::vector<long long> values);
+/// The elementwise largest of `flags` over the ranks (collective; the same
+/// length on every rank; `flags` itself on one rank).
+std::vector<char> max_over_processes(std::vector<char> flags);
 
 /// Runs `act` on process 0 alone (what it alone does in a run every process
 /// computes: writing the output) and lets every process know how it ended

@@ -188,16 +188,18 @@ void place_alpha(Discretization& d, alpha::AlphaField alpha, const std::function
     nl.graph = bonds::CellGraph::diagonal(m.num_cells());
   else
     nl.graph = bonds::find_cell_neighbors(
-        m, bonds::point_boxes(m, reference), nl.points.bond_reach(nl.kernel.horizon), [&](Index e, Index f) {
+        m, bonds::point_boxes(m, reference), nl.points.bond_reach(nl.kernel.horizon),
+        [&](Index e, Index f) {
           return amax[static_cast<std::size_t>(e)] > 0.0 || amax[static_cast<std::size_t>(f)] > 0.0;
-        });
+        },
+        d.computed_cells);
   phase("morphed stiffness");
   d.stiffness = fem::ConstitutiveField(dim, m.num_cells(), static_cast<int>(d.rule.size()));
   nl.morph = assembly::morph_stiffness(m, d.rule, nl.points, nl.graph, nl.kernel, nl.alpha, nl.material.C0,
                                        config.nonlocal.coupling == casefile::Coupling::partition
                                            ? assembly::CouplingRule::partition
                                            : assembly::CouplingRule::morphing,
-                                       d.stiffness, d.computed_cells);
+                                       d.stiffness, d.computed_cells, d.share_flags);
   if (d.damage && !d.damage->laws.empty()) {
     // THEORY §6: the morphing acts on the residual branch (1 − d_c) C₀ only;
     // the damageable branch d_c C₀ (lowered by d during a run) is local everywhere.
@@ -331,6 +333,7 @@ Discretization build_discretization(const casefile::CaseConfig& config, const Ph
                    std::move(rule), std::move(field),  scale,
                    std::move(nl),   std::move(damage), {}};
   d.computed_cells = partition::cells_near_part(d.mesh, part.parts, part.part);
+  d.share_flags = std::move(part.share_flags);
   if (d.nonlocal) place_alpha(d, make_alpha_field(config), phase, true);
   return d;
 }

@@ -40,9 +40,13 @@ struct Discretization {
   /// neighbours through a mesh node (partition::cells_near_part): every cell
   /// whose local stiffness, strain or stress it assembles or writes. With
   /// [nonlocal], elsewhere `stiffness` holds NaN, so that a read of it shows.
-  /// The CG/DG flags and α at the local points are those of every cell, on
-  /// every process.
+  /// The cell graph holds their rows only. The CG/DG flags and α at the
+  /// local points are those of every cell, on every process: a process decides
+  /// the flags of the cells it computes and gets the others' through
+  /// `share_flags` (ModelPart).
   std::vector<char> computed_cells;
+  /// ModelPart::share_flags, kept for a rebuild (empty for the whole model).
+  std::function<std::vector<char>(std::vector<char>)> share_flags{};
 
   int dim() const { return mesh.dim(); }
   assembly::LocalSpace local_space() const { return {mesh, dofmap, rule, scale}; }
@@ -87,6 +91,11 @@ void check_matrix_free(const casefile::CaseConfig& config);
 struct ModelPart {
   int parts = 1;
   int part = 0;
+  /// With several parts, required: the elementwise maximum of a flag per
+  /// cell over the processes building the parts (collective; la::). The
+  /// purely non-local (CG/DG) flags a process does not decide (its cells far
+  /// from the part) come from the process whose part holds them.
+  std::function<std::vector<char>(std::vector<char>)> share_flags{};
 };
 
 /// Builds everything; throws InputError naming the case-file key for problems
@@ -94,7 +103,8 @@ struct ModelPart {
 /// cell left without material, an [[alpha.region]] that reaches no
 /// quadrature point). `on_phase`, if given, hears each phase begin. With
 /// several parts, the morphed C of the cells near `part` only
-/// (Discretization::computed_cells); the rest is whole.
+/// (Discretization::computed_cells) and the flags of those cells, the others'
+/// shared (collective); the rest is whole.
 Discretization build_discretization(const casefile::CaseConfig& config, const PhaseCallback& on_phase = {},
                                     ModelPart part = {});
 

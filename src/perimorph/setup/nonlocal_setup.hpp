@@ -23,6 +23,8 @@ struct NonlocalModel {
   double discrete_factor = 1.0;           ///< discrete calibration factor (1: continuum calibration)
   alpha::AlphaField alpha = alpha::AlphaField::constant(0.0);
   bonds::NonlocalPoints points;
+  /// On a model part (Discretization::computed_cells), the rows of the
+  /// computed cells only, the others empty: every row a process reads.
   bonds::CellGraph graph;
   bonds::CutNeighborhood cuts;  ///< the mesh's cuts near each cell, for bonds of points.bond_reach
   assembly::MorphedStiffness morph;
