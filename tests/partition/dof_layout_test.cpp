@@ -141,10 +141,8 @@ TEST(DofLayout, OwnerComputesGivesTheSerialRowsBitForBit) {
         }
       return whole[static_cast<std::size_t>(call++)];
     };
-    only_touching.include_pair = [&](Index e, Index f) {
-      return touching[static_cast<std::size_t>(e)] != 0 || touching[static_cast<std::size_t>(f)] != 0;
-    };
-    // Only the touching cells' graph rows are read: given those alone.
+    // The pairs with a touching cell, from the touching cells' graph rows:
+    // given those rows alone.
     only_touching.rows = touching;
     const bonds::CellGraph part_graph = m.nonlocal->graph.rows_of(touching);
     ASSERT_LT(part_graph.neighbors.size(), m.nonlocal->graph.neighbors.size());

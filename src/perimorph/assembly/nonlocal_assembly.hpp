@@ -85,15 +85,16 @@ struct NonlocalOptions {
   /// the contribution of some cells, for an update in place
   /// (system::ConstrainedSystem::reassemble).
   std::function<bool(Index e, Index f)> include_pair;
-  /// With include_pair: the cells whose graph rows hold every included pair
-  /// (one flag per cell; empty: every row is read). Only their rows are read,
-  /// each pair found from either end, and the pairs are taken in the same
-  /// order as from every row (e, then f): a process of a distributed run reads
-  /// the rows of the cells it assembles (system/stiffness.hpp).
+  /// Only the pairs with a flagged cell (one flag per cell; empty: every
+  /// pair), and of the graph only the flagged cells' rows are read: each pair
+  /// found from either end, the pairs taken in the same order as from every
+  /// row (e, then f). A process of a distributed run assembles the pairs of
+  /// the cells touching its nodes (system/stiffness.hpp). With include_pair
+  /// too, the pairs both admit.
   std::span<const char> rows{};
-  /// With include_pair and the translation cache, when the processes' included
-  /// pairs together are every pair (the distributed assembly,
-  /// system/stiffness.hpp): each cached block is computed from the first
+  /// With include_pair or rows and the translation cache, when the
+  /// processes' included pairs together are every pair (the distributed
+  /// assembly, system/stiffness.hpp): each cached block is computed from the first
   /// cacheable pair of the whole graph with its key (offset and node counts),
   /// not this process's first included one, so that every process adds the
   /// serial matrix's blocks, bit for bit. `min_over_processes`, the

@@ -37,7 +37,6 @@ void assemble_into(AssembledStiffness& out, const setup::Discretization& model,
     const assembly::NonlocalSpace space = model.nonlocal_space(broken);
     assembly::NonlocalOptions options;
     if (!cells.empty()) {
-      options.include_pair = [&](Index e, Index f) { return flagged(e) || flagged(f); };
       options.rows = cells;
       options.min_over_processes = la::min_over_processes;
     }
