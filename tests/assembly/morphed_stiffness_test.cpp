@@ -193,9 +193,9 @@ TEST(AssemblyMorphed, MorphingZoneSymmetries) {
         ++checked;
         const Eigen::MatrixXd C = m.stiffness.matrix(cell, q);
         const double a = nl.alpha(x);
-        EXPECT_NEAR(m.nonlocal->morph
-                        .alpha[static_cast<std::size_t>(cell) * m.rule.size() + static_cast<std::size_t>(q)],
-                    a, 1e-14);
+        EXPECT_NEAR(
+            assembly::alpha_at_local_point(m.mesh, nl.alpha, cell, m.rule[static_cast<std::size_t>(q)].xi), a,
+            1e-14);
         // Major symmetry, exactly.
         EXPECT_TRUE(bitwise_equal(C, C.transpose())) << "cell " << cell << " point " << q;
         // C = (1 − α) C₀ + horizon integral (over the cell's graph row).
@@ -240,8 +240,9 @@ TEST(AssemblyMorphed, PartitionRuleIsExactlyOneMinusAlphaTimesC0) {
       for (Index cell = 0; cell < m.mesh.num_cells(); ++cell) {
         bool all_one = true;
         for (int q = 0; q < nq; ++q) {
-          // α at the point as the model stored it (the same as the field at our own point, to round-off).
-          const double a = m.nonlocal->morph.alpha[static_cast<std::size_t>(cell * nq + q)];
+          // α at the point as the model computes it (the same as the field at our own point, to round-off).
+          const double a = assembly::alpha_at_local_point(m.mesh, m.nonlocal->alpha, cell,
+                                                          m.rule[static_cast<std::size_t>(q)].xi);
           EXPECT_NEAR(a, m.nonlocal->alpha(local_point(m, cell, q)), 1e-14);
           fractional += a > 0.0 && a < 1.0 ? 1 : 0;
           all_one = all_one && a == 1.0;

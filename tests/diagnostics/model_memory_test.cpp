@@ -1,6 +1,6 @@
 // The model's memory by stage (diagnostics/model_memory.hpp): a process's
-// part holds the same whole stages as one process and less of the morphed C
-// and the cell graph;
+// part holds the same whole stages as one process and less of the morphed C,
+// the cell graph and the non-local points;
 // the whole stages grow with the mesh, the cell graph by its rows.
 
 #include "perimorph/diagnostics/model_memory.hpp"
@@ -26,17 +26,20 @@ casefile::CaseConfig ball(Index cells_x) {
 }
 
 TEST(ModelMemory, APartHoldsTheWholeStagesAndLessOfTheMorphedCAndGraph) {
-  const auto whole = setup::build_discretization(ball(6));
+  // 12 × 6 × 6 cells of 0.5, α around x = 1.5: the part of x > 3 reads no point of the cells of x < 1.
+  const auto whole = setup::build_discretization(ball(12));
   // The other part's flags, as the processes would share them (ModelPart).
   const auto flags = [&](std::vector<char>) { return whole.nonlocal->morph.purely_nonlocal; };
-  const auto part = setup::build_discretization(ball(6), {}, {2, 1, flags});
+  const auto part = setup::build_discretization(ball(12), {}, {2, 1, flags});
   const auto w = diagnostics::model_memory(whole), p = diagnostics::model_memory(part);
   EXPECT_GT(w.mesh, 0u);
   EXPECT_GT(w.points, 0u);
   EXPECT_GT(w.stiffness, 0u);
-  EXPECT_EQ(p.whole(), w.whole());
+  // The same whole stages, and a slot per cell saying where its points are.
+  EXPECT_EQ(p.whole(), w.whole() + static_cast<std::size_t>(whole.mesh.num_cells()) * sizeof(Index));
   EXPECT_LT(p.stiffness, w.stiffness);
   EXPECT_LT(p.graph, w.graph);
+  EXPECT_LT(p.points, w.points);
   // One Index per directed cell pair and per cell boundary of the rows.
   const auto& g = whole.nonlocal->graph;
   EXPECT_EQ(w.graph, (g.offsets.size() + g.neighbors.size()) * sizeof(Index));

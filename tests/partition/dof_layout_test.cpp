@@ -146,7 +146,15 @@ TEST(DofLayout, OwnerComputesGivesTheSerialRowsBitForBit) {
     only_touching.rows = touching;
     const bonds::CellGraph part_graph = m.nonlocal->graph.rows_of(touching);
     ASSERT_LT(part_graph.neighbors.size(), m.nonlocal->graph.neighbors.size());
-    assembly::NonlocalSpace part_space{m.mesh, m.dofmap, m.nonlocal->points, part_graph, m.nonlocal->kernel};
+    // The non-local points of the cells those rows reach alone, as a process
+    // stores them; a cache representative of another part's is made again
+    // from the mesh (NonlocalSpace::alpha).
+    const bonds::NonlocalPoints part_points = bonds::make_nonlocal_points(
+        m.mesh, m.config.nonlocal.quadrature, m.scale, m.nonlocal->alpha, m.nonlocal->points.partial_volume(),
+        part_graph.cells_in_rows(touching));
+    ASSERT_LT(part_points.stored.size(), static_cast<std::size_t>(m.mesh.num_cells()));
+    assembly::NonlocalSpace part_space{m.mesh, m.dofmap, part_points, part_graph, m.nonlocal->kernel};
+    part_space.alpha = &m.nonlocal->alpha;
     part_space.cuts = &m.nonlocal->cuts;
     assembly::assemble_nonlocal(part_space, part, only_touching);
     for (Index r = 0; r < n; ++r)

@@ -1,9 +1,10 @@
 // The part of a model a process builds (setup/discretization.hpp, ModelPart;
 // issue 17, item 1): the morphed C only of the cells near its part
 // (partition::cells_near_part), bit for bit the whole model's there, NaN
-// elsewhere (0 on purely non-local cells); α at the local points, the CG/DG
-// flags, the dofs and the cell graph are the whole model's, so every process
-// numbers the dofs alike. The cells near a part hold every cell whose local
+// elsewhere (0 on purely non-local cells); the graph rows of those cells and
+// the non-local points of the cells those rows reach, bit for bit the whole
+// model's; the CG/DG flags and the dofs are the whole model's, so every
+// process numbers the dofs alike. The cells near a part hold every cell whose local
 // stiffness it assembles (touching a dof node it owns: dof_layout), whatever α
 // makes CG or DG, and its own cells (output, damage); a rebuild for a grown α
 // keeps the part.
@@ -37,14 +38,47 @@ std::vector<Named> cases() {
   testing::add_nonlocal(ball3d, casefile::KernelKind::constant, 1.0, 0.0, 2,
                         casefile::Discretization::discontinuous_constant);
   ball3d.alpha.regions = {testing::alpha_ball(Vec3(1.5, 1.5, 1.5), 1.0, 0.6)};
+  ball3d.nonlocal.horizon_edge = casefile::HorizonEdge::partial_volume;
   return {{"mixed CG/DG plate", testing::mixed_cg_dg_plate()},
-          {"3D ball, DG degree 0", ball3d},
+          {"3D ball, DG degree 0, partial volume", ball3d},
           {"b3 (cut, CG)", casefile::parse_case_file(examples + "b3_cracked_plate_2d/case.toml")},
           {"flagship (holes, DG)", casefile::parse_case_file(examples + "hole_plate_2d/case.toml")}};
 }
 
 bool bitwise_equal(const double* a, const double* b, int n) {
   return std::memcmp(a, b, static_cast<std::size_t>(n) * sizeof(double)) == 0;
+}
+
+/// The part's non-local points: those of the computed cells and of every
+/// cell in their graph rows, the whole model's bit for bit; the per-cell α
+/// bounds of every cell; a point not stored recomputed to the stored bits.
+void expect_points_of(const setup::Discretization& part, const setup::Discretization& whole) {
+  const auto& pp = part.nonlocal->points;
+  const auto& wp = whole.nonlocal->points;
+  EXPECT_TRUE(wp.holds_every_cell());
+  EXPECT_EQ(pp.cell_alpha_min, wp.cell_alpha_min);
+  EXPECT_EQ(pp.cell_alpha_max, wp.cell_alpha_max);
+  EXPECT_EQ(pp.half_bound, wp.half_bound);
+  const std::vector<char> read = whole.nonlocal->graph.cells_in_rows(part.computed_cells);
+  const auto bits = [](const Vec3& a, const Vec3& b) {
+    return std::memcmp(a.data(), b.data(), sizeof(Vec3)) == 0;
+  };
+  for (Index c = 0; c < whole.mesh.num_cells(); ++c) {
+    ASSERT_EQ(pp.holds(c), read[static_cast<std::size_t>(c)] != 0) << "cell " << c;
+    for (int q = 0; q < pp.per_cell; ++q) {
+      const std::size_t w = wp.index(c, q);
+      EXPECT_TRUE(bits(bonds::point_position(part.mesh, pp, c, q), wp.x[w]))
+          << "cell " << c << " point " << q;
+      if (!pp.holds(c)) continue;
+      const std::size_t k = pp.index(c, q);
+      EXPECT_TRUE(bitwise_equal(&pp.weight[k], &wp.weight[w], 1) &&
+                  bitwise_equal(&pp.alpha[k], &wp.alpha[w], 1))
+          << "cell " << c << " point " << q;
+      if (wp.partial_volume()) {
+        EXPECT_TRUE(bits(pp.half[k], wp.half[w])) << "cell " << c << " point " << q;
+      }
+    }
+  }
 }
 
 /// `part` against `whole`: the same flags, α, dofs and graph; the same C on
@@ -54,7 +88,6 @@ Index expect_part_of(const setup::Discretization& part, const setup::Discretizat
   const auto& pm = part.nonlocal->morph;
   const auto& wm = whole.nonlocal->morph;
   EXPECT_EQ(pm.purely_nonlocal, wm.purely_nonlocal);
-  EXPECT_EQ(pm.alpha, wm.alpha);
   // The graph rows of the computed cells, the others empty.
   const bonds::CellGraph rows = whole.nonlocal->graph.rows_of(part.computed_cells);
   EXPECT_EQ(part.nonlocal->graph.offsets, rows.offsets);
@@ -62,6 +95,7 @@ Index expect_part_of(const setup::Discretization& part, const setup::Discretizat
   if (!whole.nonlocal->graph.neighbors.empty()) {  // (the flagship starts with α = 0: no pair)
     EXPECT_LT(part.nonlocal->graph.neighbors.size(), whole.nonlocal->graph.neighbors.size());
   }
+  expect_points_of(part, whole);
   EXPECT_EQ(part.dofmap.num_nodes(), whole.dofmap.num_nodes());
   const int nv2 = part.stiffness.voigt() * part.stiffness.voigt();
   Index absent = 0;

@@ -39,13 +39,14 @@ bool for_each_bond_of_pair(const NonlocalSpace& s, Index e, Index f, Visit&& vis
   if (pts.cell_alpha_max[static_cast<std::size_t>(e)] + pts.cell_alpha_max[static_cast<std::size_t>(f)] <=
       0.0)
     return true;
+  const std::size_t first_e = pts.first(e), first_f = pts.first(f);
   const auto broken = s.broken != nullptr ? s.broken->pair(e, f) : std::span<const std::uint32_t>{};
   thread_local std::vector<Cut> cut_buffer;
   const std::span<const Cut> cuts = s.cuts_near(e, f, cut_buffer);
   for (int g = 0; g < n; ++g) {
-    const std::size_t kg = pts.index(e, g);
+    const std::size_t kg = first_e + static_cast<std::size_t>(g);
     for (int h = f == e ? g + 1 : 0; h < n; ++h) {
-      const std::size_t kh = pts.index(f, h);
+      const std::size_t kh = first_f + static_cast<std::size_t>(h);
       const Vec3 xi = pts.x[kh] - pts.x[kg];
       const double r2 = xi.squaredNorm();
       if (!peridynamics::within_reach(r2, reach2)) continue;
@@ -249,9 +250,12 @@ std::vector<Vec3> point_displacements(const NonlocalSpace& s, std::span<const do
   const auto& pts = s.points;
   const int dim = s.mesh.dim();
   std::vector<Vec3> out(pts.x.size(), Vec3::Zero());
-  const Index ncells = s.mesh.num_cells();
+  // The cells whose points are stored (on a process of a distributed run, those its part reads).
+  const bool every = pts.holds_every_cell();
+  const Index ncells = every ? s.mesh.num_cells() : static_cast<Index>(pts.stored.size());
 #pragma omp parallel for schedule(static)
-  for (Index c = 0; c < ncells; ++c) {
+  for (Index k = 0; k < ncells; ++k) {
+    const Index c = every ? k : pts.stored[static_cast<std::size_t>(k)];
     const auto nodes = s.dofmap.cell_nodes(c);
     const int nn = static_cast<int>(nodes.size());
     for (int q = 0; q < pts.per_cell; ++q) {

@@ -50,6 +50,10 @@ Vec3 physical_point(const mesh::Mesh& mesh, Index c, const Vec3& xi) {
   return x;
 }
 
+double alpha_at_local_point(const mesh::Mesh& mesh, const alpha::AlphaField& alpha, Index c, const Vec3& xi) {
+  return alpha(physical_point(mesh, c, xi));
+}
+
 Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const Index> cells,
                                  const bonds::NonlocalPoints& points,
                                  const peridynamics::Micromodulus& kernel, const mesh::Mesh& mesh,
@@ -62,9 +66,10 @@ Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const
   const double reach2 = peridynamics::bond_reach_squared(kernel.horizon, partial, 2.0 * points.half_bound);
   // Only the cuts a bond from x_g can cross (a mesh file's pre-crack has hundreds of pieces).
   const std::vector<Cut> cuts = bonds::cuts_near_point(mesh.cuts, xg, std::sqrt(reach2));
-  for (Index f : cells)
+  for (Index f : cells) {
+    const std::size_t first = points.first(f);
     for (int h = 0; h < points.per_cell; ++h) {
-      const std::size_t k = points.index(f, h);
+      const std::size_t k = first + static_cast<std::size_t>(h);
       const double da = alpha_g - points.alpha[k];
       if (da == 0.0) continue;
       const Vec3 xi = points.x[k] - xg;
@@ -84,6 +89,7 @@ Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const
           I(a, b) += s * xi[i] * xi[j] * xi[l] * xi[m];
         }
     }
+  }
   I.triangularView<Eigen::StrictlyLower>() = I.transpose().triangularView<Eigen::StrictlyLower>();
   return I;
 }
@@ -105,7 +111,6 @@ MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::Qu
       field.add_tensor(Eigen::MatrixXd::Constant(nv, nv, std::numeric_limits<double>::quiet_NaN()));
 
   MorphedStiffness out;
-  out.alpha.resize(static_cast<std::size_t>(ncells) * static_cast<std::size_t>(nq));
   out.purely_nonlocal.assign(static_cast<std::size_t>(ncells), 0);
   std::vector<std::vector<Eigen::MatrixXd>> per_point(static_cast<std::size_t>(ncells));
   std::vector<char> absent(static_cast<std::size_t>(ncells), 0);  // not computed here: NaN
@@ -123,17 +128,17 @@ MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::Qu
 
 #pragma omp parallel for schedule(dynamic, 16)
   for (Index c = 0; c < ncells; ++c) {
-    // α at the local points: a purely non-local cell has α = 1 at all of them (and C = 0).
-    bool all_one = true;
-    const std::size_t first = static_cast<std::size_t>(c) * static_cast<std::size_t>(nq);
-    for (int q = 0; q < nq; ++q) {
-      const double a = alpha(physical_point(mesh, c, rule[static_cast<std::size_t>(q)].xi));
-      out.alpha[first + static_cast<std::size_t>(q)] = a;
-      all_one = all_one && a == 1.0;
-    }
     if (!computed.empty() && computed[static_cast<std::size_t>(c)] == 0) {
       absent[static_cast<std::size_t>(c)] = 1;  // its flag comes from share_flags
       continue;
+    }
+    // α at the local points: a purely non-local cell has α = 1 at all of them (and C = 0).
+    bool all_one = true;
+    std::vector<double> alpha_q(static_cast<std::size_t>(nq));
+    for (int q = 0; q < nq; ++q) {
+      const double a = alpha_at_local_point(mesh, alpha, c, rule[static_cast<std::size_t>(q)].xi);
+      alpha_q[static_cast<std::size_t>(q)] = a;
+      all_one = all_one && a == 1.0;
     }
     // Range of α over the horizon (neighbour cells' points).
     double amin = 1.0, amax = 0.0;
@@ -145,7 +150,7 @@ MorphedStiffness morph_stiffness(const mesh::Mesh& mesh, std::span<const fem::Qu
     bool uniform = true, all_zero = true;
     for (int q = 0; q < nq; ++q) {
       const Vec3 x = physical_point(mesh, c, rule[static_cast<std::size_t>(q)].xi);
-      const double a = out.alpha[first + static_cast<std::size_t>(q)];
+      const double a = alpha_q[static_cast<std::size_t>(q)];
       Eigen::MatrixXd Cq = (1.0 - a) * C0;
       if (rule_kind == CouplingRule::morphing && !(amin == a && amax == a))
         Cq += horizon_integral(x, a, graph.row(c), points, kernel, mesh,

@@ -34,8 +34,6 @@ namespace perimorph::assembly {
 enum class CouplingRule { morphing, partition };
 
 struct MorphedStiffness {
-  /// α at the local quadrature points (cell c, point q at c·n + q).
-  std::vector<double> alpha;
   /// 1 where α = 1 and C = 0 at every local point of the cell: a purely
   /// non-local cell (where α < 1 at a point, C keeps (1 − α) C₀ there).
   std::vector<char> purely_nonlocal;
@@ -45,6 +43,10 @@ struct MorphedStiffness {
 
 /// The image of the reference point xi of cell c under the Q1 map.
 Vec3 physical_point(const mesh::Mesh& mesh, Index c, const Vec3& xi);
+
+/// α at the local point xi of cell c: the value morph_stiffness uses there
+/// (computed where it is needed, not stored: the same bits on every call).
+double alpha_at_local_point(const mesh::Mesh& mesh, const alpha::AlphaField& alpha, Index c, const Vec3& xi);
 
 /// The horizon integral ∫ c(ξ) (α_g − α(p))/2 ξ⊗ξ⊗ξ⊗ξ/(2|ξ|²) dp at x_g
 /// (Voigt, model dimension), summed over the non-local points of the given
@@ -59,7 +61,7 @@ Eigen::MatrixXd horizon_integral(const Vec3& xg, double alpha_g, std::span<const
 /// Fills `field` (sized for `rule`) with C(x) for every cell marked in
 /// `computed` (every cell if empty), from the reference stiffness C0 (Voigt,
 /// model dimension); the other cells get NaN, unless purely non-local (0).
-/// α at the local points is every cell's. The purely non-local flags are
+/// The purely non-local flags are
 /// decided for the computed cells (C = 0 and α = 1 at every local point) and
 /// the others' are 0 until `share_flags` (required with `computed`: the
 /// elementwise maximum over the processes, collective) brings them from the

@@ -74,31 +74,19 @@ void first_pairs_over_processes(const std::map<OffsetKey, long>& cache_index,
   }
 }
 
-/// One cell's quadrature points, recomputed (the plain version); lives on the
-/// stack of the thread that computes the pair.
+/// One cell's quadrature points, recomputed (the plain version, or a cell
+/// whose points this process does not store); lives on the stack of the
+/// thread that computes the pair.
 struct PointBuffer {
-  std::array<Vec3, max_points> x;
+  std::array<Vec3, max_points> x, half;
   std::array<double, max_points> weight, alpha;
 };
 
-/// The points of cell c, with the formulas of make_nonlocal_points (same
-/// expressions, same order, so the values are bit-identical to the stored ones).
-template <int D>
+/// The points of cell c, with the formulas of make_nonlocal_points (bit-identical to the stored ones).
 void recompute_points(const mesh::Mesh& mesh, Index c, const std::vector<fem::QuadraturePoint>& rule,
                       double scale, const alpha::AlphaField& alpha, PointBuffer& out) {
-  constexpr int nn = fem::q1_nodes<D>;
-  fem::NodeCoords<D> X;
-  const auto nodes = mesh.cell(c);
-  for (int a = 0; a < nn; ++a) X.col(a) = mesh.node(nodes[static_cast<std::size_t>(a)]).template head<D>();
-  fem::ShapeGradients<D> g;
-  for (std::size_t q = 0; q < rule.size(); ++q) {
-    const double detJ = fem::q1_physical_gradients<D>(X, rule[q].xi, g);
-    Vec3 x = Vec3::Zero();
-    x.template head<D>() = X * fem::q1_values<D>(rule[q].xi);
-    out.x[q] = x;
-    out.weight[q] = rule[q].weight * detJ * scale;
-    out.alpha[q] = alpha(x);
-  }
+  bonds::compute_cell_points(mesh, c, rule, {}, scale, alpha, out.x.data(), out.weight.data(),
+                             out.alpha.data(), nullptr);
 }
 
 /// Points per direction of a tensor rule with `per_cell` points in D dimensions.
@@ -126,13 +114,13 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
     p.count = pts.per_cell;
     p.nodes = static_cast<int>(s.dofmap.cell_nodes(c).size());
     p.shape = p.nodes == 1 ? ones.data() : pts.shape.data();
-    p.half = pts.partial_volume() ? pts.half.data() + pts.index(c, 0) : nullptr;
     p.half_bound = pts.half_bound;
     return p;
   };
   auto cell_points = [&](Index c) {
     peridynamics::CellPoints p = cell_shape(c);
-    const std::size_t k = pts.index(c, 0);
+    const std::size_t k = pts.first(c);
+    p.half = pts.partial_volume() ? pts.half.data() + k : nullptr;
     p.x = pts.x.data() + k;
     p.weight = pts.weight.data() + k;
     p.alpha = pts.alpha.data() + k;
@@ -150,12 +138,13 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
     PERIMORPH_ASSERT(s.alpha != nullptr, "precomputed_points = false needs NonlocalSpace::alpha");
     rule = fem::gauss_legendre(D, points_per_direction(pts.per_cell, D));
     // The space must describe the stored points (same α field, same scale):
-    // check the first cell against them where they exist.
+    // check the first stored cell against them where they exist.
     if (ncells > 0 && !pts.weight.empty()) {
+      const Index first = pts.holds_every_cell() ? 0 : pts.stored.front();
       PointBuffer b;
-      recompute_points<D>(s.mesh, 0, rule, s.scale, *s.alpha, b);
+      recompute_points(s.mesh, first, rule, s.scale, *s.alpha, b);
       for (int q = 0; q < pts.per_cell; ++q) {
-        const std::size_t k = pts.index(0, q);
+        const std::size_t k = pts.index(first, q);
         PERIMORPH_ASSERT(
             b.x[static_cast<std::size_t>(q)] == pts.x[k] &&
                 b.weight[static_cast<std::size_t>(q)] == pts.weight[k] &&
@@ -172,20 +161,31 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
     // The pieces a bond between e and f can cross (bonds::CutNeighborhood).
     thread_local std::vector<Cut> cut_buffer;
     const auto cuts = near(e, f) ? near_cut.near_pair(e, f, cut_buffer) : std::span<const Cut>{};
-    if (!plain)
+    if (!plain && pts.holds(e) && pts.holds(f))
       return peridynamics::pair_stiffness<D>(cell_points(e), cell_points(f), e == f, s.kernel, cuts, unit,
                                              block, broken_in(e, f));
-    PointBuffer be, bf;
-    auto recomputed = [&](Index c, PointBuffer& b) {
-      recompute_points<D>(s.mesh, c, rule, s.scale, *s.alpha, b);
+    // Points made again: every cell's in the plain version; else a
+    // translation-cache representative from another process's part
+    // (NonlocalOptions::min_over_processes), whose cells this process may not
+    // store, from the mesh (the same bits).
+    PERIMORPH_ASSERT(plain || s.alpha != nullptr, "a cell pair outside the part needs NonlocalSpace::alpha");
+    auto points_of = [&](Index c, PointBuffer& b) {
+      if (!plain && pts.holds(c)) return cell_points(c);
+      if (plain)
+        recompute_points(s.mesh, c, rule, s.scale, *s.alpha, b);
+      else
+        bonds::compute_cell_points(s.mesh, c, pts.rule, pts.line_weights, pts.scale, *s.alpha, b.x.data(),
+                                   b.weight.data(), b.alpha.data(), b.half.data());
       peridynamics::CellPoints p = cell_shape(c);
+      p.half = !pts.partial_volume() ? nullptr : plain ? pts.half.data() + pts.first(c) : b.half.data();
       p.x = b.x.data();
       p.weight = b.weight.data();
       p.alpha = b.alpha.data();
       return p;
     };
-    const peridynamics::CellPoints pe = recomputed(e, be);
-    const peridynamics::CellPoints pf = e == f ? pe : recomputed(f, bf);
+    PointBuffer be, bf;
+    const peridynamics::CellPoints pe = points_of(e, be);
+    const peridynamics::CellPoints pf = e == f ? pe : points_of(f, bf);
     return peridynamics::pair_stiffness<D>(pe, pf, e == f, s.kernel, cuts, unit, block, broken_in(e, f));
   };
   const std::size_t max_block = static_cast<std::size_t>(2 * peridynamics::max_cell_nodes * D) *

@@ -38,8 +38,9 @@ struct NonlocalSpace {
   const bonds::NonlocalPoints& points;       ///< non-owning
   const bonds::CellGraph& graph;             ///< non-owning
   const peridynamics::Micromodulus& kernel;  ///< non-owning
-  /// The α field the points were made with (non-owning). Read only when
-  /// NonlocalOptions::precomputed_points is false (then required).
+  /// The α field the points were made with (non-owning). Read when
+  /// NonlocalOptions::precomputed_points is false, or for a cell pair whose
+  /// points are not stored (then required).
   const alpha::AlphaField* alpha = nullptr;
   /// The factor make_nonlocal_points applied to every weight (thickness in 2D,
   /// cross-section in 1D, 1 in 3D). Read only when precomputed_points is false.

@@ -52,6 +52,15 @@ CellGraph CellGraph::rows_of(std::span<const char> cells) const {
   return g;
 }
 
+std::vector<char> CellGraph::cells_in_rows(std::span<const char> cells) const {
+  assert(static_cast<Index>(cells.size()) == num_cells());
+  std::vector<char> out(cells.begin(), cells.end());
+  for (Index c = 0; c < num_cells(); ++c)
+    if (cells[static_cast<std::size_t>(c)] != 0)
+      for (Index f : row(c)) out[static_cast<std::size_t>(f)] = 1;
+  return out;
+}
+
 std::size_t CellGraph::num_pairs() const {
   std::size_t n = 0;
   for (Index e = 0; e < num_cells(); ++e)

@@ -64,24 +64,32 @@ void append_angular(Out out, const setup::NonlocalModel& nl, int dim) {
 /// run holds whole, stage by stage, and per cell.
 void append_memory(std::back_insert_iterator<std::string> out, const setup::Discretization& model) {
   const ModelMemory m = model_memory(model);
+  // A process also holds, per cell, where its points are (NonlocalPoints::slot).
+  const std::size_t whole =
+      m.whole() + (model.nonlocal && model.nonlocal->points.holds_every_cell()
+                       ? static_cast<std::size_t>(model.mesh.num_cells()) * sizeof(Index)
+                       : 0);
   const auto MB = [](std::size_t b) { return static_cast<double>(b) / 1e6; };
-  const std::string nonlocal =
-      model.nonlocal ? fmt::format(", non-local points {:.2f} MB, alpha at the local points {:.2f} MB",
-                                   MB(m.points), MB(m.alpha))
-                     : std::string();
+  const std::string nonlocal = model.nonlocal
+                                   ? fmt::format(
+                                         ", alpha bounds of the non-local points per cell {:.2f} MB, purely "
+                                         "non-local flags {:.2f} MB",
+                                         MB(m.cell_alpha), MB(m.flags))
+                                   : std::string();
   const std::string part =
-      model.nonlocal ? fmt::format(
-                           "cell graph {:.2f} MB and local stiffness C {:.2f} MB, of which a process "
-                           "holds its part's (the graph rows and morphed C of its cells and their "
-                           "node neighbours)",
-                           MB(m.graph), MB(m.stiffness))
-                     : fmt::format("local stiffness C {:.2f} MB", MB(m.stiffness));
+      model.nonlocal
+          ? fmt::format(
+                "cell graph {:.2f} MB, non-local points {:.2f} MB and local stiffness C {:.2f} MB, "
+                "of which a process holds its part's (the graph rows and morphed C of its cells "
+                "and their node neighbours, and the points of the cells those rows reach)",
+                MB(m.graph), MB(m.points), MB(m.stiffness))
+          : fmt::format("local stiffness C {:.2f} MB", MB(m.stiffness));
   fmt::format_to(
       out,
-      "memory     the model: mesh {:.2f} MB, dof map {:.2f} MB{}: {:.0f} bytes per cell, held whole "
-      "by every process of a distributed run; {}\n",
+      "memory     the model: mesh {:.2f} MB, dof map {:.2f} MB{}: {:.0f} bytes per cell with the place "
+      "of each cell's points, held whole by every process of a distributed run; {}\n",
       MB(m.mesh), MB(m.dofs), nonlocal,
-      static_cast<double>(m.whole()) / static_cast<double>(std::max<Index>(model.mesh.num_cells(), 1)), part);
+      static_cast<double>(whole) / static_cast<double>(std::max<Index>(model.mesh.num_cells(), 1)), part);
 }
 
 }  // namespace

@@ -102,6 +102,7 @@ std::vector<CellSums> sum_bonds(const setup::Discretization& model, const Vec3& 
                                 double tol) {
   const auto& nl = *model.nonlocal;
   const auto& pts = nl.points;
+  PERIMORPH_ASSERT(pts.holds_every_cell(), "effective_gc reads every cell pair: it needs the whole model");
   const auto& cuts = model.mesh.cuts;
   const Index ncells = pts.num_cells();
   const int per = pts.per_cell;

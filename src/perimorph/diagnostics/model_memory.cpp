@@ -32,10 +32,11 @@ ModelMemory model_memory(const setup::Discretization& model) {
   if (model.nonlocal) {
     const auto& nl = *model.nonlocal;
     const auto& p = nl.points;
-    m.points = bytes_of(p.x) + bytes_of(p.weight) + bytes_of(p.alpha) + bytes_of(p.shape) +
-               bytes_of(p.cell_alpha_max) + bytes_of(p.cell_alpha_min) + bytes_of(p.half);
+    m.points = bytes_of(p.x) + bytes_of(p.weight) + bytes_of(p.alpha) + bytes_of(p.half) + bytes_of(p.stored);
+    m.cell_alpha = bytes_of(p.cell_alpha_max) + bytes_of(p.cell_alpha_min) + bytes_of(p.slot) +
+                   bytes_of(p.shape) + bytes_of(p.rule) + bytes_of(p.line_weights);
     m.graph = bytes_of(nl.graph.offsets) + bytes_of(nl.graph.neighbors);
-    m.alpha = bytes_of(nl.morph.alpha) + bytes_of(nl.morph.purely_nonlocal);
+    m.flags = bytes_of(nl.morph.purely_nonlocal);
   }
   return m;
 }

@@ -14,14 +14,16 @@ namespace perimorph::diagnostics {
 
 /// Bytes of each stage's arrays (their sizes, not their capacities).
 struct ModelMemory {
-  std::size_t mesh = 0;    ///< nodes, connectivity, regions, sets
-  std::size_t dofs = 0;    ///< the dof map (cell nodes, CG/DG flags, node coordinates)
-  std::size_t points = 0;  ///< the non-local points (positions, weights, α, shapes, boxes)
-  std::size_t graph = 0;   ///< the cell graph (one Index per directed cell pair; a part's rows, on a process)
-  std::size_t alpha = 0;   ///< α at the local points and the purely non-local flags
+  std::size_t mesh = 0;  ///< nodes, connectivity, regions, sets
+  std::size_t dofs = 0;  ///< the dof map (cell nodes, CG/DG flags, node coordinates)
+  std::size_t points =
+      0;  ///< the stored non-local points (positions, weights, α, boxes; a part's, on a process)
+  std::size_t cell_alpha = 0;  ///< the points' α bounds per cell and the stored cells' slots (whole)
+  std::size_t graph = 0;  ///< the cell graph (one Index per directed cell pair; a part's rows, on a process)
+  std::size_t flags = 0;  ///< the purely non-local flags (a byte a cell)
   std::size_t stiffness = 0;  ///< the morphed C (only the cells a part computes, on a process)
   /// What every process of a distributed run holds whole today.
-  std::size_t whole() const { return mesh + dofs + points + alpha; }
+  std::size_t whole() const { return mesh + dofs + cell_alpha + flags; }
 };
 
 ModelMemory model_memory(const setup::Discretization& model);

@@ -49,7 +49,7 @@ std::string partition_report(const setup::Discretization& disc, int parts) {
   const bonds::CellGraph& bonds_graph = disc.nonlocal ? disc.nonlocal->graph : diagonal;
   const partition::DofLayout layout = partition::dof_layout(disc.dofmap, p, bonds_graph);
   Index max_owned = 0, max_ghosts = 0;
-  std::size_t cells_computed = 0, pairs_computed = 0, cells_morphed = 0, graph_entries = 0;
+  std::size_t cells_computed = 0, pairs_computed = 0, cells_morphed = 0, graph_entries = 0, point_cells = 0;
   for (int q = 0; q < parts; ++q) {
     const std::vector<char> near = partition::cells_near_part(disc.mesh, parts, q);
     std::size_t entries = 0;  // the graph rows the part holds (setup::Discretization::computed_cells)
@@ -59,6 +59,8 @@ std::string partition_report(const setup::Discretization& disc, int parts) {
         entries += bonds_graph.row(c).size();
       }
     graph_entries = std::max(graph_entries, entries);
+    const std::vector<char> read = bonds_graph.cells_in_rows(near);  // whose points the part stores
+    point_cells = std::max(point_cells, static_cast<std::size_t>(std::count(read.begin(), read.end(), 1)));
     max_owned = std::max(max_owned, layout.owned_nodes(q));
     max_ghosts = std::max(max_ghosts, static_cast<Index>(layout.ghosts[static_cast<std::size_t>(q)].size()));
     const auto touching = partition::cells_touching(
@@ -81,9 +83,11 @@ std::string partition_report(const setup::Discretization& disc, int parts) {
       per(pairs_computed, bonds_graph.num_pairs()),
       disc.nonlocal && parts > 1
           ? fmt::format("; morphed C set up for {:.3f}× the cells (each part's and their node neighbours), "
-                        "and their cell graph rows held: the largest part {:.3f} of the whole graph",
+                        "and their cell graph rows held: the largest part {:.3f} of the whole graph, and "
+                        "the non-local points of {:.3f} of the cells",
                         per(cells_morphed, static_cast<std::size_t>(disc.mesh.num_cells())),
-                        per(graph_entries, bonds_graph.neighbors.size()))
+                        per(graph_entries, bonds_graph.neighbors.size()),
+                        per(point_cells, static_cast<std::size_t>(disc.mesh.num_cells())))
           : std::string());
   return out;
 }

@@ -83,16 +83,25 @@ bool Adaptivity::raises_alpha(const AlphaBall& b) const {
                            setup::alpha_profile(disc_->config.adaptivity.profile)};
   const int dim = m.dim();
   const std::size_t nq = disc_->rule.size();
+  const auto& pts = nl.points;
+  std::vector<Vec3> xp(static_cast<std::size_t>(pts.per_cell));
+  std::vector<double> ap(xp.size());
   for (Index c = 0; c < m.num_cells(); ++c) {
     const double reach = b.radius + b.transition + cell_size(m, c);
     if (distance(m.cell_centroid(c), b.center, dim) > reach) continue;
-    for (int q = 0; q < nl.points.per_cell; ++q) {
-      const std::size_t k = nl.points.index(c, q);
-      if (alpha::region_value(ball, nl.points.x[k], dim) > nl.points.alpha[k]) return true;
+    if (pts.holds(c)) {  // else (a process of a distributed run) recomputed: the same values
+      std::copy_n(pts.x.begin() + static_cast<std::ptrdiff_t>(pts.index(c, 0)), xp.size(), xp.begin());
+      std::copy_n(pts.alpha.begin() + static_cast<std::ptrdiff_t>(pts.index(c, 0)), ap.size(), ap.begin());
+    } else {
+      bonds::compute_cell_points(m, c, pts.rule, {}, pts.scale, nl.alpha, xp.data(), nullptr, ap.data(),
+                                 nullptr);
     }
+    for (std::size_t q = 0; q < xp.size(); ++q)
+      if (alpha::region_value(ball, xp[q], dim) > ap[q]) return true;
     for (std::size_t q = 0; q < nq; ++q) {
       const Vec3 x = assembly::physical_point(m, c, disc_->rule[q].xi);
-      if (alpha::region_value(ball, x, dim) > nl.morph.alpha[static_cast<std::size_t>(c) * nq + q])
+      if (alpha::region_value(ball, x, dim) >
+          assembly::alpha_at_local_point(m, nl.alpha, c, disc_->rule[q].xi))
         return true;
     }
   }

@@ -4,6 +4,7 @@
 #include "perimorph/core/error.hpp"
 #include "perimorph/evolution/cell_mechanisms.hpp"
 #include "perimorph/evolution/floating_parts.hpp"
+#include "perimorph/la/petsc_session.hpp"
 
 #include <fmt/format.h>
 
@@ -45,13 +46,18 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
   // looked at once.
   if (first == seen_) return {detached_.size()};
   const assembly::NonlocalSpace space = disc_->nonlocal_space(&state.failed);
+  // A process looks at the pairs whose cells' points it stores (on a part,
+  // those its graph rows reach: the pair's decider among them), and the
+  // answer is shared: every process gets the serial one.
+  const auto& points = disc_->nonlocal->points;
   bool separated = false;
   for (std::size_t k = first; k < seen_ && !separated; ++k) {
     const auto& id = state.failed_in_order[k];
     if (k > first && state.failed_in_order[k - 1].e == id.e && state.failed_in_order[k - 1].f == id.f)
       continue;
-    separated = !assembly::has_intact_bond(space, id.e, id.f);
+    if (points.holds(id.e) && points.holds(id.f)) separated = !assembly::has_intact_bond(space, id.e, id.f);
   }
+  if (la::world_size() > 1) separated = la::max_over_processes(separated ? 1 : 0) != 0;
   const auto& prescribed = system.bc().dofs;
   if (separated) {
     std::vector<Index> held = state.held_dofs;

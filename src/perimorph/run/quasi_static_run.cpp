@@ -334,7 +334,8 @@ RunSummary QuasiStaticRun::finish() {
   if (disc_->nonlocal) {
     const auto& pts = disc_->nonlocal->points;
     for (const auto& id : state_.failed_in_order)
-      summary_.failed_bond_points.emplace_back(pts.x[pts.index(id.e, id.g)], pts.x[pts.index(id.f, id.h)]);
+      summary_.failed_bond_points.emplace_back(bonds::point_position(disc_->mesh, pts, id.e, id.g),
+                                               bonds::point_position(disc_->mesh, pts, id.f, id.h));
   }
   return std::move(summary_);
 }

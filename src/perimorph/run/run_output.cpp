@@ -219,7 +219,8 @@ io::UnstructuredGrid RunOutput::increment_grid(const setup::Discretization& mode
     io::Field alpha_cell{"alpha_mean", 1, {}}, kind{"element_kind", 1, {}};
     for (Index c : cells) {
       double a = 0.0;
-      for (std::size_t q = 0; q < nq; ++q) a += nl.morph.alpha[static_cast<std::size_t>(c) * nq + q];
+      for (std::size_t q = 0; q < nq; ++q)
+        a += assembly::alpha_at_local_point(model.mesh, nl.alpha, c, model.rule[q].xi);
       alpha_cell.values.push_back(a / static_cast<double>(nq));
       const auto k = dm.continuity(c);
       kind.values.push_back(k == dofs::Continuity::discontinuous                    ? 2.0
@@ -380,8 +381,8 @@ void RunOutput::add_failed_bonds(const setup::Discretization& model, int increme
     if (!failed_bonds_csv_) return;
     const auto& pts = model.nonlocal->points;
     for (const auto& b : bonds) {
-      const Vec3& xg = pts.x[pts.index(b.id.e, b.id.g)];
-      const Vec3& xh = pts.x[pts.index(b.id.f, b.id.h)];
+      const Vec3 xg = bonds::point_position(model.mesh, pts, b.id.e, b.id.g);
+      const Vec3 xh = bonds::point_position(model.mesh, pts, b.id.f, b.id.h);
       const double critical = assembly::energy_at_stretch(b, s_crit);
       failed_bonds_csv_->add_row({static_cast<double>(increment), static_cast<double>(iteration), xg.x(),
                                   xg.y(), xg.z(), xh.x(), xh.y(), xh.z(), b.stretch, critical,

@@ -170,7 +170,13 @@ void place_alpha(Discretization& d, alpha::AlphaField alpha, const std::function
   const bool partial_volume = config.nonlocal.horizon_edge == casefile::HorizonEdge::partial_volume;
   phase("points");
   nl.alpha = std::move(alpha);
-  nl.points = bonds::make_nonlocal_points(m, config.nonlocal.quadrature, d.scale, nl.alpha, partial_volume);
+  // A part stores the points of the cells it reads, known with its graph
+  // rows (below); until then, none (the per-cell α bounds are whole).
+  const bool part = !d.computed_cells.empty();
+  nl.points =
+      part ? bonds::make_nonlocal_points(m, config.nonlocal.quadrature, d.scale, nl.alpha, partial_volume,
+                                         std::vector<char>(static_cast<std::size_t>(m.num_cells()), 0))
+           : bonds::make_nonlocal_points(m, config.nonlocal.quadrature, d.scale, nl.alpha, partial_volume);
   if (config_check) check_alpha_regions(config, nl.alpha, nl.points, m, d.rule);
   phase("bond graph");
   const auto& amax = nl.points.cell_alpha_max;
@@ -193,6 +199,7 @@ void place_alpha(Discretization& d, alpha::AlphaField alpha, const std::function
           return amax[static_cast<std::size_t>(e)] > 0.0 || amax[static_cast<std::size_t>(f)] > 0.0;
         },
         d.computed_cells);
+  if (part) bonds::store_points(nl.points, m, nl.alpha, nl.graph.cells_in_rows(d.computed_cells));
   phase("morphed stiffness");
   d.stiffness = fem::ConstitutiveField(dim, m.num_cells(), static_cast<int>(d.rule.size()));
   nl.morph = assembly::morph_stiffness(m, d.rule, nl.points, nl.graph, nl.kernel, nl.alpha, nl.material.C0,

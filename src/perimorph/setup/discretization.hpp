@@ -53,6 +53,8 @@ struct Discretization {
   /// The non-local space (requires [nonlocal]), `failed` bonds left out (null: none).
   assembly::NonlocalSpace nonlocal_space(const bonds::BrokenBonds* failed = nullptr) const {
     assembly::NonlocalSpace s{mesh, dofmap, nonlocal->points, nonlocal->graph, nonlocal->kernel};
+    s.alpha = &nonlocal->alpha;
+    s.scale = scale;
     s.broken = failed;
     s.cuts = &nonlocal->cuts;
     return s;

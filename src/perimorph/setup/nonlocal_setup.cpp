@@ -81,7 +81,12 @@ void check_alpha_regions(const casefile::CaseConfig& config, const alpha::AlphaF
   const int dim = config.dim();
   for (std::size_t k = 0; k < regions.size() && k < config.alpha.regions.size(); ++k) {
     auto reaches = [&](const Vec3& x) { return alpha::region_value(regions[k], x, dim) > 0.0; };
-    bool reached = std::any_of(points.x.begin(), points.x.end(), reaches);
+    bool reached = false;
+    std::vector<Vec3> x(static_cast<std::size_t>(points.per_cell));
+    for (Index c = 0; c < mesh.num_cells() && !reached; ++c) {
+      bonds::point_positions(mesh, points, c, x.data());
+      reached = std::any_of(x.begin(), x.end(), reaches);
+    }
     for (Index c = 0; c < mesh.num_cells() && !reached; ++c)
       for (const auto& q : rule) reached = reached || reaches(assembly::physical_point(mesh, c, q.xi));
     if (reached) continue;

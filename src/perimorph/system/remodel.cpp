@@ -143,7 +143,8 @@ Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& befor
                    setup::DirichletData bc, std::span<const double> F, std::span<const double> damage) {
   Remodelled out;
   const int dim = before.dim();
-  out.cells = changed_cells(before, after);
+  const bool distributed = system.K().distribution() != nullptr;
+  if (!distributed) out.cells = changed_cells(before, after);
   std::vector<char> in(static_cast<std::size_t>(before.mesh.num_cells()), 0);
   for (Index c : out.cells) in[static_cast<std::size_t>(c)] = 1;
 
@@ -152,7 +153,6 @@ Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& befor
   // Spread over processes, the dofs a process owns change with the model
   // (partition/dof_layout.hpp): the old rows it holds are not those it needs,
   // and the new model is assembled (the same as the update to round-off).
-  const bool distributed = system.K().distribution() != nullptr;
   out.partial =
       !distributed && assembled_pairs(before, in) + assembled_pairs(after, in) <= assembled_pairs(after, {});
   if (!out.partial) {

@@ -49,7 +49,7 @@ struct RemodelTimes {
 
 struct Remodelled {
   std::unique_ptr<ConstrainedSystem> system;  ///< on `after`, solver not attached
-  std::vector<Index> cells;                   ///< changed_cells(before, after)
+  std::vector<Index> cells;                   ///< changed_cells(before, after); empty when distributed
   /// The partial update was used (false: the changed cells' bond pairs, in
   /// the old model and the new, outnumbered the new model's: assembled anew).
   bool partial = true;
