@@ -16,6 +16,7 @@
 #include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/evolution/floating_parts.hpp"
 #include "perimorph/la/linear_solver.hpp"
+#include "perimorph/la/node_gather.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/la/shell_matrix.hpp"
 #include "perimorph/partition/dof_layout.hpp"
@@ -29,6 +30,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Cholesky>
 
+#include <cmath>
 #include <limits>
 
 namespace perimorph {
@@ -201,6 +203,58 @@ TEST(DistributedShell, GetsTheWholeXAndKeepsTheOwnedRowsOfY) {
   for (Index node : reads) others += d->owns(node) ? 0 : dim;
   EXPECT_EQ(H.received_per_product(), others);
   EXPECT_EQ(A.received_per_product(), la::world_size() == 1 ? 0 : (nodes - d->owned_nodes()) * dim);
+}
+
+// What a run brings of u after each solve (la::NodeGather): the entries of
+// the nodes a process reads, exact, and nothing else; a second gather with
+// the same scatter brings the new values.
+TEST(NodeGather, BringsTheNodesReadAndLeavesTheRest) {
+  const auto m = setup::build_discretization(mixed_plate());
+  const auto d = distribute(m);
+  const Index dim = m.dim(), nodes = m.dofmap.num_nodes();
+  const auto n = static_cast<std::size_t>(nodes * dim);
+  std::vector<Index> reads;
+  for (Index node = 0; node < nodes; ++node)
+    if (d->owns(node) || node % 3 == 0) reads.push_back(node);
+  std::vector<char> is_read(static_cast<std::size_t>(nodes), 0);
+  for (Index node : reads) is_read[static_cast<std::size_t>(node)] = 1;
+  la::NodeGather halo(d, dim, reads);
+  la::Vector x(d, dim);
+  for (double shift : {0.0, 100.0}) {
+    std::vector<double> xv(n);
+    for (std::size_t i = 0; i < n; ++i) xv[i] = shift + 1.0 + 0.25 * static_cast<double>(i);
+    x.assign_replicated(xv);
+    const std::vector<double> got = halo.gathered(x, std::numeric_limits<double>::quiet_NaN());
+    ASSERT_EQ(got.size(), n);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (is_read[i / static_cast<std::size_t>(dim)])
+        EXPECT_EQ(got[i], xv[i]) << "entry " << i;
+      else
+        EXPECT_TRUE(std::isnan(got[i])) << "entry " << i;
+    }
+  }
+  Index others = 0;
+  for (Index node : reads) others += d->owns(node) ? 0 : dim;
+  EXPECT_EQ(halo.received(), others);
+  la::NodeGather every(d, dim, {});
+  std::vector<double> all(n, -1.0);
+  every.gather(x, all);
+  EXPECT_EQ(all, x.to_replicated());
+  EXPECT_EQ(every.received(), (nodes - d->owned_nodes()) * dim);
+}
+
+// The run's sums over the dofs (energies, reactions) add each process's
+// share in rank order: the same bits on every process.
+TEST(SumOverProcesses, AddsInRankOrderWithTheSameBitsOnEveryProcess) {
+  const int rank = la::world_rank(), size = la::world_size();
+  const auto share = [](int r) { return std::vector<double>{0.1 * (r + 1), 1.0 / (r + 3), -1e-17 * r}; };
+  const std::vector<double> sum = la::sum_over_processes(share(rank));
+  std::vector<double> expected = share(0);
+  for (int r = 1; r < size; ++r)
+    for (std::size_t i = 0; i < expected.size(); ++i) expected[i] += share(r)[i];
+  EXPECT_EQ(sum, expected);
+  const std::vector<double> everyone = la::all_gather(sum);
+  for (std::size_t i = 0; i < everyone.size(); ++i) EXPECT_EQ(everyone[i], sum[i % sum.size()]);
 }
 
 // A checkpoint's matrix (run/checkpoint.hpp) does not depend on the number of

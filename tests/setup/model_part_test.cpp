@@ -196,5 +196,58 @@ TEST(ModelPart, ARebuildForAGrownAlphaKeepsThePart) {
   EXPECT_NE(rebuilt_whole.nonlocal->morph.purely_nonlocal, whole.nonlocal->morph.purely_nonlocal);
 }
 
+// What a process of a distributed run brings of the displacement after each
+// solve (setup::nodes_read): the nodes of the cells its stretch pass reaches
+// (its own cells and their graph neighbours), of the cells it writes and
+// strains, and every node it owns; not the whole model's.
+TEST(ModelPart, APartReadsTheDisplacementOfItsHaloOnly) {
+  for (const auto& [name, config] : cases()) {
+    SCOPED_TRACE(name);
+    const auto whole = setup::build_discretization(config);
+    const Index nodes = whole.dofmap.num_nodes();
+    const std::vector<Index> all = setup::nodes_read(whole);
+    ASSERT_EQ(static_cast<Index>(all.size()), nodes);
+    for (Index n = 0; n < nodes; ++n) ASSERT_EQ(all[static_cast<std::size_t>(n)], n);
+    for (int parts : {2, 4}) {
+      SCOPED_TRACE(parts);
+      const auto p = partition::coordinate_bisection(whole.mesh, parts);
+      const auto layout = partition::dof_layout(whole.dofmap, p, whole.nonlocal->graph);
+      std::size_t total = 0;
+      for (int q = 0; q < parts; ++q) {
+        SharedFlags flags{&whole.nonlocal->morph.purely_nonlocal, {}};
+        const auto part = setup::build_discretization(config, {}, {parts, q, flags.share()});
+        const std::vector<Index> read = setup::nodes_read(part);
+        ASSERT_TRUE(std::is_sorted(read.begin(), read.end()));
+        std::vector<char> is_read(static_cast<std::size_t>(nodes), 0);
+        for (Index n : read) is_read[static_cast<std::size_t>(n)] = 1;
+        const auto expect_read = [&](Index c, const char* why) {
+          for (Index n : whole.dofmap.cell_nodes(c))
+            ASSERT_TRUE(is_read[static_cast<std::size_t>(n)])
+                << "part " << q << ": node " << n << " of cell " << c << " (" << why << ")";
+        };
+        const auto& graph = whole.nonlocal->graph;
+        for (Index c = 0; c < whole.mesh.num_cells(); ++c) {
+          if (p.owner[static_cast<std::size_t>(c)] != q) continue;
+          expect_read(c, "its own");
+          for (Index f : graph.row(c)) expect_read(f, "a bond of its own cell");
+        }
+        for (Index n = 0; n < nodes; ++n) {
+          if (layout.node_owner[static_cast<std::size_t>(n)] == q) {
+            EXPECT_TRUE(is_read[static_cast<std::size_t>(n)]) << "owned node " << n;
+          }
+        }
+        total += read.size();
+      }
+      // The 3D ball's horizon (1.0 on 6 cells of 1.0 with a ball of α) spans
+      // the block: each part reads it all. The others are wider than a horizon.
+      if (name.rfind("3D ball", 0) != 0) {
+        EXPECT_LT(total, static_cast<std::size_t>(parts * nodes)) << "every part reads every node";
+      }
+      std::printf("%s, %d parts: each part reads %.2f of the nodes on average\n", name.c_str(), parts,
+                  static_cast<double>(total) / (parts * static_cast<double>(nodes)));
+    }
+  }
+}
+
 }  // namespace
 }  // namespace perimorph

@@ -48,7 +48,7 @@ std::string partition_report(const setup::Discretization& disc, int parts) {
   const partition::Partition p = partition::coordinate_bisection(disc.mesh, parts);
   const bonds::CellGraph& bonds_graph = disc.nonlocal ? disc.nonlocal->graph : diagonal;
   const partition::DofLayout layout = partition::dof_layout(disc.dofmap, p, bonds_graph);
-  Index max_owned = 0, max_ghosts = 0;
+  Index max_owned = 0, max_ghosts = 0, max_received = 0, max_received_whole = 0;
   std::size_t cells_computed = 0, pairs_computed = 0, cells_morphed = 0, graph_entries = 0, point_cells = 0;
   for (int q = 0; q < parts; ++q) {
     const std::vector<char> near = partition::cells_near_part(disc.mesh, parts, q);
@@ -62,6 +62,18 @@ std::string partition_report(const setup::Discretization& disc, int parts) {
     const std::vector<char> read = bonds_graph.cells_in_rows(near);  // whose points the part stores
     point_cells = std::max(point_cells, static_cast<std::size_t>(std::count(read.begin(), read.end(), 1)));
     max_owned = std::max(max_owned, layout.owned_nodes(q));
+    // u after each solve (setup::nodes_read): the nodes of the cells whose
+    // points the part stores (its computed cells without [nonlocal]), less
+    // those it owns; gathered whole, every node it does not own.
+    std::vector<Index> read_cells;
+    for (Index c = 0; c < disc.mesh.num_cells(); ++c)
+      if (disc.nonlocal ? read[static_cast<std::size_t>(c)] : near[static_cast<std::size_t>(c)])
+        read_cells.push_back(c);
+    Index received = 0;
+    for (Index n : disc.dofmap.dof_nodes_of_cells(read_cells))
+      received += layout.node_owner[static_cast<std::size_t>(n)] != q;
+    max_received = std::max(max_received, received);
+    max_received_whole = std::max(max_received_whole, disc.dofmap.num_nodes() - layout.owned_nodes(q));
     max_ghosts = std::max(max_ghosts, static_cast<Index>(layout.ghosts[static_cast<std::size_t>(q)].size()));
     const auto touching = partition::cells_touching(
         disc.dofmap, [&](Index n) { return layout.node_owner[static_cast<std::size_t>(n)] == q; });
@@ -89,6 +101,15 @@ std::string partition_report(const setup::Discretization& disc, int parts) {
                         per(graph_entries, bonds_graph.neighbors.size()),
                         per(point_cells, static_cast<std::size_t>(disc.mesh.num_cells())))
           : std::string());
+  if (parts > 1)
+    out += fmt::format(
+        "           u after each solve (fracture and elastic runs): the largest part receives {} of the {} "
+        "dof "
+        "nodes ({:.3f}; gathered whole: {}, {:.3f})\n",
+        max_received, disc.dofmap.num_nodes(),
+        per(static_cast<std::size_t>(max_received), static_cast<std::size_t>(disc.dofmap.num_nodes())),
+        max_received_whole,
+        per(static_cast<std::size_t>(max_received_whole), static_cast<std::size_t>(disc.dofmap.num_nodes())));
   return out;
 }
 

@@ -3,6 +3,8 @@
 #include "perimorph/assembly/local_assembly.hpp"
 #include "perimorph/assembly/morphed_stiffness.hpp"
 #include "perimorph/core/error.hpp"
+#include "perimorph/la/petsc_session.hpp"
+#include "perimorph/partition/partition.hpp"
 
 #include <fmt/format.h>
 #include <Eigen/Eigenvalues>
@@ -65,6 +67,7 @@ Adaptivity::Adaptivity(const setup::Discretization& disc, double s_crit) : disc_
   core_ = spec.core >= 0.0 ? spec.core : delta;
   transition_ = spec.transition >= 0.0 ? spec.transition : delta;
   seeded_.assign(static_cast<std::size_t>(disc.mesh.num_cells()), 0);
+  decides_ = partition::cells_of_part(disc.mesh, la::world_size(), la::world_rank());
 }
 
 void Adaptivity::propose(Index cell, int increment, bool predicted, bool critical_damage) {
@@ -130,15 +133,24 @@ Proposal Adaptivity::inspect(const RunState& state, const system::ConstrainedSys
     }
     const double bar = spec.theta * s_crit_;
     const assembly::LocalSpace space = disc_->local_space();
+    // Each process tests the cells of its part (u is exact there); the hits,
+    // gathered and put in cell order, are proposed as on one process.
+    std::vector<double> hits;
     for (Index c = 0; c < disc_->mesh.num_cells(); ++c) {
-      if (seeded_[static_cast<std::size_t>(c)] || points.cell_alpha_min[static_cast<std::size_t>(c)] >= 1.0)
+      if (seeded_[static_cast<std::size_t>(c)] || points.cell_alpha_min[static_cast<std::size_t>(c)] >= 1.0 ||
+          (!decides_.empty() && decides_[static_cast<std::size_t>(c)] == 0))
         continue;
       for (const auto& q : disc_->rule)
         if (largest_principal_strain(assembly::strain_at(space, c, q.xi, state.u), disc_->dim()) > bar) {
-          propose(c, state.increment, true);
+          hits.push_back(static_cast<double>(c));
           break;
         }
     }
+    if (!decides_.empty()) {
+      hits = la::all_gather(hits);
+      std::sort(hits.begin(), hits.end());
+    }
+    for (double c : hits) propose(static_cast<Index>(c), state.increment, true);
   }
   // allow_growth() opens one inspect: growth from failed bonds is due once.
   const bool grow = spec.update == casefile::AdaptivityUpdate::iteration || growth_due_;

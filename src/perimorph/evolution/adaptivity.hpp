@@ -82,6 +82,10 @@ class Adaptivity final : public Component {
   std::size_t seen_ = 0;      ///< failed bonds already grown from (RunState::failed_in_order)
   std::size_t checked_ = 0;   ///< failed bonds already checked against α (predictor)
   std::vector<char> seeded_;  ///< per cell: has its ball
+  /// The cells whose strain this process tests for the predictor
+  /// (partition::cells_of_part: each cell by one process, the hits gathered;
+  /// empty: every cell).
+  std::vector<char> decides_;
   std::vector<AlphaBall> proposed_, silent_, balls_;
 };
 

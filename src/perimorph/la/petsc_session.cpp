@@ -157,6 +157,18 @@ int max_over_processes(int value) {
   return out;
 }
 
+std::vector<double> sum_over_processes(std::vector<double> values) {
+  if (world_size() == 1 || values.empty()) return values;
+  const std::vector<double> all = all_gather(values);
+  const std::size_t n = values.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    double sum = all[i];
+    for (std::size_t at = n + i; at < all.size(); at += n) sum += all[at];
+    values[i] = sum;
+  }
+  return values;
+}
+
 std::vector<long long> min_over_processes(std::vector<long long> values) {
   if (world_size() == 1 || values.empty()) return values;
   MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_LONG_LONG, MPI_MIN,

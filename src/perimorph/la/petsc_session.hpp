@@ -45,6 +45,11 @@ void barrier();
 /// The largest of `value` over the ranks of PETSC_COMM_WORLD (collective;
 /// `value` itself on one rank).
 int max_over_processes(int value);
+/// The elementwise sum of `values` over the ranks, added in rank order on
+/// every process (each gets the same bits, whatever MPI's reduction
+/// algorithm; collective, the same length on every rank; `values` itself on
+/// one rank).
+std::vector<double> sum_over_processes(std::vector<double> values);
 /// The elementwise smallest of `values` over the ranks (collective; every
 /// rank passes the same length; `values` itself on one rank).
 std::vector<long long> min_over_processes(std::vector<long long> values);

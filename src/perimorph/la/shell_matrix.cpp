@@ -1,9 +1,11 @@
 #include "perimorph/la/shell_matrix.hpp"
 
+#include "perimorph/la/node_gather.hpp"
 #include "perimorph/la/petsc_check.hpp"
 
 #include <petscmat.h>
 
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -15,14 +17,8 @@ struct ShellMatrix::Context {
   Apply apply;
   std::shared_ptr<const Distribution> distribution;  ///< null on one process
   int block_size = 1;
-  std::vector<Index> reads;     ///< nodes read (assembly numbering); empty: all
-  VecScatter gather = nullptr;  ///< x → this process: its halo, or all of x (distributed numbering)
-  Vec gathered = nullptr;
-  std::vector<double> x, y;  ///< whole, assembly numbering
-  ~Context() {
-    if (gather) VecScatterDestroy(&gather);
-    if (gathered) VecDestroy(&gathered);
-  }
+  std::optional<NodeGather> gather;  ///< x → this process: its halo, or all of x
+  std::vector<double> x, y;          ///< whole, assembly numbering
 };
 
 namespace {
@@ -47,38 +43,9 @@ PetscErrorCode shell_mult(Mat A, Vec x, Vec y) {
   const Distribution& d = *c.distribution;
   const Index bs = c.block_size;
   const auto n = static_cast<std::size_t>(d.num_nodes() * bs);
-  if (!c.gather) {
-    c.x.assign(n, 0.0);  // entries outside the halo stay 0: never read
-    if (c.reads.empty()) {
-      PetscCall(VecScatterCreateToAll(x, &c.gather, &c.gathered));
-    } else {
-      std::vector<PetscInt> blocks(c.reads.size());
-      for (std::size_t i = 0; i < c.reads.size(); ++i)
-        blocks[i] = d.to_distributed[static_cast<std::size_t>(c.reads[i])];
-      IS from = nullptr;
-      PetscCall(ISCreateBlock(PETSC_COMM_SELF, bs, static_cast<PetscInt>(blocks.size()), blocks.data(),
-                              PETSC_COPY_VALUES, &from));
-      PetscCall(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(blocks.size()) * bs, &c.gathered));
-      PetscCall(VecScatterCreate(x, from, c.gathered, nullptr, &c.gather));
-      PetscCall(ISDestroy(&from));
-    }
-  }
-  PetscCall(VecScatterBegin(c.gather, x, c.gathered, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(c.gather, x, c.gathered, INSERT_VALUES, SCATTER_FORWARD));
-  const PetscScalar* xa = nullptr;
-  PetscCall(VecGetArrayRead(c.gathered, &xa));
+  if (c.x.size() != n) c.x.assign(n, 0.0);  // entries outside the halo stay 0: never read
+  c.gather->gather(x, c.x);
   c.y.assign(n, 0.0);
-  if (c.reads.empty()) {
-    for (Index node = 0; node < d.num_nodes(); ++node)
-      for (Index k = 0; k < bs; ++k)
-        c.x[static_cast<std::size_t>(node * bs + k)] =
-            xa[d.to_distributed[static_cast<std::size_t>(node)] * bs + k];
-  } else {
-    for (std::size_t i = 0; i < c.reads.size(); ++i)
-      for (Index k = 0; k < bs; ++k)
-        c.x[static_cast<std::size_t>(c.reads[i] * bs + k)] = xa[static_cast<Index>(i) * bs + k];
-  }
-  PetscCall(VecRestoreArrayRead(c.gathered, &xa));
   c.apply(c.x, c.y);
   PetscScalar* ya = nullptr;
   PetscCall(VecGetArrayWrite(y, &ya));
@@ -107,7 +74,7 @@ ShellMatrix::ShellMatrix(std::shared_ptr<const Distribution> distribution, int b
   context_->apply = std::move(apply);
   context_->distribution = std::move(distribution);
   context_->block_size = block_size;
-  context_->reads = std::move(reads);
+  if (context_->distribution) context_->gather.emplace(context_->distribution, block_size, std::move(reads));
   const Index local = context_->distribution ? context_->distribution->owned_nodes() * block_size : size;
   PM_PETSC(MatCreateShell(PETSC_COMM_WORLD, local, local, size, size, context_.get(), &m_));
   PM_PETSC(MatSetBlockSize(m_, block_size));
@@ -133,13 +100,7 @@ ShellMatrix& ShellMatrix::operator=(ShellMatrix&& other) noexcept {
 }
 
 Index ShellMatrix::received_per_product() const {
-  const auto& c = *context_;
-  if (!c.distribution) return 0;
-  const Distribution& d = *c.distribution;
-  if (c.reads.empty()) return (d.num_nodes() - d.owned_nodes()) * c.block_size;
-  Index others = 0;
-  for (Index node : c.reads) others += d.owns(node) ? 0 : 1;
-  return others * c.block_size;
+  return context_->gather ? context_->gather->received() : 0;
 }
 
 void ShellMatrix::mult(const Vector& x, Vector& y) const {

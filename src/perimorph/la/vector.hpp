@@ -49,6 +49,8 @@ class Vector {
   std::vector<double> to_replicated() const;
   /// The distribution (null for a serial vector).
   const Distribution* distribution() const { return distribution_.get(); }
+  /// The same, shared (for what outlives the vector: la::NodeGather).
+  const std::shared_ptr<const Distribution>& shared_distribution() const { return distribution_; }
   double norm2() const;
   double dot(const Vector& other) const;
   /// this ← this + a·x

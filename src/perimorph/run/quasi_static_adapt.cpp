@@ -12,18 +12,11 @@
 
 namespace perimorph::run {
 
-namespace {
-
-/// ½ uᵀ K u.
-double strain_energy(const system::ConstrainedSystem& system, const la::Vector& u, la::Vector& Ku) {
-  system.apply_K(u, Ku);
-  const std::vector<double> a = u.to_replicated(), b = Ku.to_replicated();
-  double e = 0.0;
-  for (std::size_t k = 0; k < a.size(); ++k) e += 0.5 * a[k] * b[k];
-  return e;
+double QuasiStaticRun::strain_energy() {
+  system_->apply_K(u_, internal_);
+  const std::vector<double> a = gather(u_), b = gather(internal_);
+  return add_over_dofs(0.0, [&](std::size_t k) { return 0.5 * a[k] * b[k]; });
 }
-
-}  // namespace
 
 bool QuasiStaticRun::grow_alpha() {
   adaptivity_->allow_growth();
@@ -59,20 +52,21 @@ void QuasiStaticRun::adapt_for_next() {
   la::Vector Ku = system_->make_vector();
   u_.assign_replicated(u_prev_);
   system_->apply_K(u_, Ku);
-  fint_prev_ = Ku.to_replicated();
+  fint_prev_ = gather(Ku);
 }
 
 void QuasiStaticRun::rebuild() {
   const auto t0 = std::chrono::steady_clock::now();
   progress_->phase("remodel");
-  const double before_energy = strain_energy(*system_, u_, internal_);
+  const double before_energy = strain_energy();
   auto next = std::make_unique<setup::Discretization>(setup::rebuild_for_alpha(*disc_, state_.alpha));
   system::Remodelled r =
       system::remodel(*system_, *disc_, *next, &state_.failed, setup::build_dirichlet(*next),
                       setup::build_external_force(*next), state_.history);
   const Index n = next->dofmap.num_dofs();
-  state_.u = system::transfer_dof_vector(*disc_, *next, state_.u);
-  u_prev_ = system::transfer_dof_vector(*disc_, *next, u_prev_);
+  // Carried over whole (from the owners where a process holds its halo only).
+  state_.u = system::transfer_dof_vector(*disc_, *next, whole(state_.u));
+  u_prev_ = system::transfer_dof_vector(*disc_, *next, whole(u_prev_));
   fint_prev_.assign(static_cast<std::size_t>(n),
                     0.0);  // recomputed where it is used next (record, adapt_for_next)
   system_ = std::move(r.system);
@@ -83,7 +77,8 @@ void QuasiStaticRun::rebuild() {
   u_ = system_->make_vector();
   internal_ = system_->make_vector();
   u_.assign_replicated(state_.u);
-  state_.energy.model_change += strain_energy(*system_, u_, internal_) - before_energy;
+  choose_gather();
+  state_.energy.model_change += strain_energy() - before_energy;
   for (auto& component : setup_.components) {
     try {
       component->rebind(*disc_, state_, *system_);

@@ -27,8 +27,8 @@ void QuasiStaticRun::checkpoint_if_due() {
 }
 
 void QuasiStaticRun::save_checkpoint() {
-  // Process 0 writes it (every process holds the whole run state); every
-  // process takes part in gathering the distributed system.
+  // Process 0 writes it; every process takes part in gathering the
+  // distributed system and the vectors a process holds at its halo only.
   std::optional<io::AtomicFile> file;
   la::on_process_zero([&] { file.emplace(checkpoint_path_); });
   core::BinaryWriter out([&](std::string_view bytes) {
@@ -43,8 +43,9 @@ void QuasiStaticRun::save_checkpoint() {
   out.put<int>(summary_.preconditioner_rebuilds);
   out.put<int>(summary_.direct_fallback_solves);
   out.put<int>(summary_.most_null_pivots);
-  out.put_vector(u_prev_);
-  out.put_vector(fint_prev_);
+  out.put_vector(whole(u_prev_));
+  out.put_vector(whole(fint_prev_));
+  state_.u = whole(state_.u);
   evolution::save_state(state_, out);
   out.tag("output");
   const OutputPosition at = output_->position();

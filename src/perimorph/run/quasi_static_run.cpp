@@ -4,26 +4,37 @@
 #include "perimorph/io/progress.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/run/checkpoint.hpp"
+#include "perimorph/setup/discretization.hpp"
 #include "perimorph/system/stiffness.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <limits>
 
 namespace perimorph::run {
 
 namespace {
 
+/// The reaction of each set: Σ over its nodes of r (every node on one
+/// process; spread over processes, the nodes each owns, the sums added in
+/// rank order: collective).
 std::vector<Vec3> sum_reactions(const std::vector<setup::ReactionSet>& sets, std::span<const double> r,
-                                int dim) {
+                                int dim, const la::Distribution* owned) {
   std::vector<Vec3> out;
   for (const auto& s : sets) {
     Vec3 f = Vec3::Zero();
     for (Index n : s.dof_nodes)
-      for (int d = 0; d < dim; ++d) f[d] += r[static_cast<std::size_t>(n * dim + d)];
+      if (!owned || owned->owns(n))
+        for (int d = 0; d < dim; ++d) f[d] += r[static_cast<std::size_t>(n * dim + d)];
     out.push_back(f);
   }
+  if (!owned) return out;
+  std::vector<double> flat;
+  for (const Vec3& f : out) flat.insert(flat.end(), f.data(), f.data() + 3);
+  flat = la::sum_over_processes(std::move(flat));
+  for (std::size_t k = 0; k < out.size(); ++k) out[k] = Vec3(flat[3 * k], flat[3 * k + 1], flat[3 * k + 2]);
   return out;
 }
 
@@ -73,6 +84,7 @@ QuasiStaticRun::QuasiStaticRun(const setup::Discretization& disc, const RunOptio
                                           summary_.reaction_names);
   }
   system_->attach_solver();
+  choose_gather();
   summary_.csv_path = output_->csv_path();
   summary_.pvd_path = config.output.vtu ? output_->pvd_path() : "";
   progress_->start_increments();
@@ -89,6 +101,48 @@ void QuasiStaticRun::find_components() {
 }
 
 QuasiStaticRun::~QuasiStaticRun() = default;
+
+void QuasiStaticRun::choose_gather() {
+  halo_.reset();
+  const auto* d = u_.distribution();
+  // The damage reads u beyond the part (every process computes the same
+  // proposal from the whole state, its Newton solve the whole residual):
+  // gathered whole there.
+  if (!d || damage_) return;
+  std::vector<Index> nodes = setup::nodes_read(*disc_);
+  std::vector<char> read(static_cast<std::size_t>(d->num_nodes()), 0);
+  for (Index n : nodes) read[static_cast<std::size_t>(n)] = 1;
+  for (Index n = 0; n < d->num_nodes(); ++n)
+    PERIMORPH_ASSERT(!d->owns(n) || read[static_cast<std::size_t>(n)],
+                     "a process must read the dofs it owns");
+  halo_.emplace(u_.shared_distribution(), disc_->dim(), std::move(nodes));
+}
+
+std::vector<double> QuasiStaticRun::gather(const la::Vector& v) {
+  if (!halo_) return v.to_replicated();
+  return halo_->gathered(v, std::numeric_limits<double>::quiet_NaN());
+}
+
+std::vector<double> QuasiStaticRun::whole(const std::vector<double>& v) const {
+  if (!halo_) return v;
+  la::Vector x = system_->make_vector();
+  x.assign_replicated(v);
+  return x.to_replicated();
+}
+
+double QuasiStaticRun::add_over_dofs(double init, const std::function<double(std::size_t)>& term) const {
+  const la::Distribution* d = u_.distribution();
+  const std::size_t n = static_cast<std::size_t>(disc_->dofmap.num_dofs());
+  if (!d) {
+    for (std::size_t k = 0; k < n; ++k) init += term(k);
+    return init;
+  }
+  const auto dim = static_cast<std::size_t>(disc_->dim());
+  double mine = 0.0;
+  for (std::size_t k = 0; k < n; ++k)
+    if (d->owns(static_cast<Index>(k / dim))) mine += term(k);
+  return init + la::sum_over_processes({mine})[0];
+}
 
 void QuasiStaticRun::apply_load(int i) {
   state_.increment = i + 1;
@@ -135,10 +189,10 @@ void QuasiStaticRun::solve() {
     // Work of all external forces (applied + reactions = K u at equilibrium)
     // on the elastic step from the last state.
     system_->apply_K(u_, internal_);
-    state_.u = u_.to_replicated();
-    fint_ = internal_.to_replicated();
-    for (std::size_t k = 0; k < state_.u.size(); ++k)
-      work += 0.5 * (fint_[k] + fint_prev_[k]) * (state_.u[k] - u_prev_[k]);
+    state_.u = gather(u_);
+    fint_ = gather(internal_);
+    work = add_over_dofs(
+        work, [&](std::size_t k) { return 0.5 * (fint_[k] + fint_prev_[k]) * (state_.u[k] - u_prev_[k]); });
     return;
   }
   // A re-equilibration at fixed load.
@@ -150,9 +204,9 @@ void QuasiStaticRun::solve() {
                              fracture_->applied_energy(), max_stretch / fracture_->s_crit(),
                              summary_.last_solve, iteration_seconds);
   }
-  state_.u = u_.to_replicated();
+  state_.u = gather(u_);
   const std::vector<double>& F = system_->applied_force();
-  for (std::size_t k = 0; k < state_.u.size(); ++k) work += lambda * F[k] * (state_.u[k] - u_before[k]);
+  work = add_over_dofs(work, [&](std::size_t k) { return lambda * F[k] * (state_.u[k] - u_before[k]); });
 }
 
 void QuasiStaticRun::warn_unused_options() {
@@ -223,7 +277,7 @@ void QuasiStaticRun::record(bool force_vtu) {
   const std::vector<double>& F = system_->applied_force();
   if ((fracture_ || damage_) && rec_.break_iterations > 0) {
     system_->apply_K(u_, internal_);
-    fint_ = internal_.to_replicated();
+    fint_ = gather(internal_);
   }
   if (damage_) {
     const evolution::EnergyLedger& e = state_.energy;
@@ -272,8 +326,7 @@ void QuasiStaticRun::record(bool force_vtu) {
   }
   std::vector<double> reaction(fint_);
   for (std::size_t k = 0; k < reaction.size(); ++k) reaction[k] -= lambda * F[k];
-  double energy = 0.0;
-  for (std::size_t k = 0; k < uv.size(); ++k) energy += 0.5 * uv[k] * fint_[k];
+  const double energy = add_over_dofs(0.0, [&](std::size_t k) { return 0.5 * uv[k] * fint_[k]; });
   u_prev_ = uv;
   fint_prev_ = fint_;
   state_.energy.strain_energy = energy;
@@ -281,7 +334,7 @@ void QuasiStaticRun::record(bool force_vtu) {
   const double work = state_.energy.external_work;
   rec_.increment = state_.increment;
   rec_.load_factor = lambda;
-  rec_.reactions = sum_reactions(setup_.sets, reaction, dim);
+  rec_.reactions = sum_reactions(setup_.sets, reaction, dim, u_.distribution());
   rec_.strain_energy = energy;
   rec_.external_work = work;
   rec_.iterations = summary_.last_solve.iterations;
@@ -293,7 +346,6 @@ void QuasiStaticRun::record(bool force_vtu) {
   const int i = state_.increment;
   if (force_vtu || i % disc_->config.output.every == 0 || i == increments()) write_vtu(i, true);
   output_->add_row(rec_);
-  summary_.displacement = uv;
   summary_.reactions = rec_.reactions;
   summary_.strain_energy = energy;
   summary_.external_work = work;
@@ -329,6 +381,7 @@ void QuasiStaticRun::write_increment() {
 
 RunSummary QuasiStaticRun::finish() {
   progress_->finish();
+  summary_.displacement = whole(state_.u);
   summary_.alpha = state_.alpha;
   summary_.damage = state_.history;
   if (disc_->nonlocal) {

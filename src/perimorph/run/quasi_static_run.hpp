@@ -11,12 +11,15 @@
 #include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/evolution/local_damage.hpp"
 #include "perimorph/evolution/run_state.hpp"
+#include "perimorph/la/node_gather.hpp"
 #include "perimorph/run/run_output.hpp"
 #include "perimorph/run/static_run.hpp"
 #include "perimorph/system/constrained_system.hpp"
 
 #include <chrono>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -99,6 +102,19 @@ class QuasiStaticRun {
   /// solves: Interrupted, naming the increment and what is written.
   void stop_if_asked();
   [[noreturn]] void stop_unsupported(const std::exception& e);
+  /// Sets halo_ for the current system (after it is built or restored).
+  void choose_gather();
+  /// v's entries this process reads (halo_), or the whole vector (collective).
+  std::vector<double> gather(const la::Vector& v);
+  /// The whole vector of `v`, which is exact at the dofs this process owns
+  /// (collective): what a checkpoint and the summary hold.
+  std::vector<double> whole(const std::vector<double>& v) const;
+  /// init + Σ term(k) over every dof k: on one process in dof order; spread
+  /// over processes, each adds the dofs it owns and the sums are added in
+  /// rank order (collective).
+  double add_over_dofs(double init, const std::function<double(std::size_t)>& term) const;
+  /// ½ uᵀ K u of the current u (K u left in internal_; collective).
+  double strain_energy();
   /// Finds the bond-failure, adaptivity and damage components among setup_'s.
   void find_components();
   void warn_unused_options();
@@ -130,7 +146,11 @@ class QuasiStaticRun {
   double remodel_seconds_ = 0.0;       ///< spent in rebuild(), cumulative
   std::unique_ptr<RunOutput> output_;
   evolution::RunState state_;
-  la::Vector u_, internal_;                        ///< the solution (initial guess of the next solve), K u
+  la::Vector u_, internal_;  ///< the solution (initial guess of the next solve), K u
+  /// Spread over processes, for a run without damage: u and K u are brought
+  /// to each process at setup::nodes_read only (NaN elsewhere in state_.u,
+  /// u_prev_, fint_, fint_prev_); empty: gathered whole.
+  std::optional<la::NodeGather> halo_;
   std::vector<double> u_prev_, fint_prev_, fint_;  ///< of the last recorded state, and fint of this one
   IncrementRecord rec_;                            ///< of the increment in progress
   std::size_t failed_before_ = 0;

@@ -353,4 +353,13 @@ Discretization rebuild_for_alpha(const Discretization& disc, alpha::AlphaField a
   return d;
 }
 
+std::vector<Index> nodes_read(const Discretization& disc) {
+  std::vector<Index> cells;
+  for (Index c = 0; c < disc.mesh.num_cells(); ++c)
+    if (disc.nonlocal ? disc.nonlocal->points.holds(c)
+                      : disc.computed_cells.empty() || disc.computed_cells[static_cast<std::size_t>(c)])
+      cells.push_back(c);
+  return disc.dofmap.dof_nodes_of_cells(cells);
+}
+
 }  // namespace perimorph::setup

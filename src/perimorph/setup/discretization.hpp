@@ -110,6 +110,13 @@ struct ModelPart {
 Discretization build_discretization(const casefile::CaseConfig& config, const PhaseCallback& on_phase = {},
                                     ModelPart part = {});
 
+/// The dof nodes (ascending) whose displacement this process reads: those of
+/// the cells whose non-local points it stores (NonlocalPoints::holds: its
+/// stretch pass reaches them), or without [nonlocal] of its computed_cells.
+/// They hold every cell its part writes, strains or assembles and every dof
+/// node it owns. Every node for the whole model.
+std::vector<Index> nodes_read(const Discretization& disc);
+
 /// The discretization of `disc`'s case with α replaced by `alpha` (THEORY §5:
 /// α grows during a run). Kept: the mesh, the local quadrature, the material
 /// and the calibrated kernel. Rebuilt from the new α: the non-local points,
