@@ -243,6 +243,32 @@ TEST(NodeGather, BringsTheNodesReadAndLeavesTheRest) {
   EXPECT_EQ(every.received(), (nodes - d->owned_nodes()) * dim);
 }
 
+// What the run reads of K u (the owned entries, nothing sent) and how it
+// sums over the dofs: each entry once, by its owner.
+TEST(DistributedVector, OwnedEntriesAndSumsOverTheOwnedEntries) {
+  const auto m = setup::build_discretization(mixed_plate());
+  const auto d = distribute(m);
+  const Index dim = m.dim();
+  const auto n = static_cast<std::size_t>(m.dofmap.num_dofs());
+  std::vector<double> values(n);
+  for (std::size_t i = 0; i < n; ++i) values[i] = 0.5 + static_cast<double>(i % 7);
+  la::Vector v(d, dim);
+  v.assign_replicated(values);
+  const std::vector<double> mine = v.owned_entries(std::numeric_limits<double>::quiet_NaN());
+  ASSERT_EQ(mine.size(), n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (d->owns(static_cast<Index>(i) / dim))
+      EXPECT_EQ(mine[i], values[i]) << "entry " << i;
+    else
+      EXPECT_TRUE(std::isnan(mine[i])) << "entry " << i;
+  }
+  // Small integers: any order of the additions gives the same sum.
+  const double sum = la::add_over_entries(d.get(), dim, n, 1.0, [&](std::size_t i) { return mine[i]; });
+  double expected = 1.0;
+  for (double x : values) expected += x;
+  EXPECT_EQ(sum, expected);
+}
+
 // The run's sums over the dofs (energies, reactions) add each process's
 // share in rank order: the same bits on every process.
 TEST(SumOverProcesses, AddsInRankOrderWithTheSameBitsOnEveryProcess) {

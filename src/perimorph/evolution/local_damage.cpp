@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 
 namespace perimorph::evolution {
 
@@ -32,16 +33,17 @@ class DowndateInserter final : public assembly::MatrixInserter {
 
 namespace {
 
-/// ½ uᵀ K u − λ Fᵀ u (K the system's unconstrained stiffness, F the applied force at load factor 1).
-double potential(const system::ConstrainedSystem& system, std::span<const double> u, double lambda) {
+/// ½ uᵀ K u − λ Fᵀ u (K the system's unconstrained stiffness, F the applied
+/// force at load factor 1). `u` needs to be exact at the dofs this process
+/// owns only (collective).
+double potential(const system::ConstrainedSystem& system, std::span<const double> u, double lambda, int dim) {
   la::Vector x = system.make_vector(), Kx = system.make_vector();
   x.assign_replicated(u);
   system.K().mult(x, Kx);
-  const auto k = Kx.to_replicated();
+  const auto k = Kx.owned_entries(std::numeric_limits<double>::quiet_NaN());
   const auto& F = system.applied_force();
-  double e = 0.0;
-  for (std::size_t i = 0; i < u.size(); ++i) e += 0.5 * u[i] * k[i] - lambda * F[i] * u[i];
-  return e;
+  return la::add_over_entries(x.distribution(), dim, u.size(), 0.0,
+                              [&](std::size_t i) { return 0.5 * u[i] * k[i] - lambda * F[i] * u[i]; });
 }
 
 }  // namespace
@@ -65,9 +67,9 @@ std::vector<LocalDamage::Change> LocalDamage::gather_changes(const std::vector<C
 }
 
 void LocalDamage::ledger_move(RunState& state, const system::ConstrainedSystem& system,
-                              std::span<const double> u_newton) {
-  state.energy.overshoot -=
-      potential(system, u_newton, state.load_factor) - potential(system, state.u, state.load_factor);
+                              std::span<const double> u_newton) const {
+  state.energy.overshoot -= potential(system, u_newton, state.load_factor, disc_->dim()) -
+                            potential(system, state.u, state.load_factor, disc_->dim());
 }
 
 LocalDamage::LocalDamage(const setup::Discretization& disc)

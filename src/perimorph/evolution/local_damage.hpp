@@ -66,8 +66,8 @@ class LocalDamage final : public Component {
     double Y;           ///< the damage force that drove it
     double volume;      ///< w |J| scale of the point
   };
-  static void ledger_move(RunState& state, const system::ConstrainedSystem& system,
-                          std::span<const double> u_newton);
+  void ledger_move(RunState& state, const system::ConstrainedSystem& system,
+                   std::span<const double> u_newton) const;
   static std::vector<Change> gather_changes(const std::vector<Change>& mine);
   const setup::Discretization* disc_;  ///< non-owning: the run's current discretization
   double tolerance_ = 0.0;

@@ -1,6 +1,7 @@
 #include "perimorph/la/vector.hpp"
 
 #include "perimorph/la/petsc_check.hpp"
+#include "perimorph/la/petsc_session.hpp"
 
 #include <petscvec.h>
 
@@ -149,6 +150,36 @@ std::vector<double> Vector::to_replicated() const {
   PM_PETSC(VecScatterDestroy(&to_all));
   PM_PETSC(VecDestroy(&all));
   return out;
+}
+
+std::vector<double> Vector::owned_entries(double elsewhere) const {
+  if (!distribution_) return to_std();
+  const Distribution& d = *distribution_;
+  PetscInt bs = 1;
+  PM_PETSC(VecGetBlockSize(v_, &bs));
+  std::vector<double> out(static_cast<std::size_t>(d.num_nodes() * bs), elsewhere);
+  const PetscScalar* a = nullptr;
+  PM_PETSC(VecGetArrayRead(v_, &a));
+  for (Index n = 0; n < d.num_nodes(); ++n) {
+    if (!d.owns(n)) continue;
+    const Index at = (d.to_distributed[static_cast<std::size_t>(n)] - d.begin) * bs;
+    for (Index k = 0; k < bs; ++k) out[static_cast<std::size_t>(n * bs + k)] = a[at + k];
+  }
+  PM_PETSC(VecRestoreArrayRead(v_, &a));
+  return out;
+}
+
+double add_over_entries(const Distribution* distribution, int block_size, std::size_t size, double init,
+                        const std::function<double(std::size_t)>& term) {
+  if (!distribution) {
+    for (std::size_t k = 0; k < size; ++k) init += term(k);
+    return init;
+  }
+  const auto bs = static_cast<std::size_t>(block_size);
+  double mine = 0.0;
+  for (std::size_t k = 0; k < size; ++k)
+    if (distribution->owns(static_cast<Index>(k / bs))) mine += term(k);
+  return init + sum_over_processes({mine})[0];
 }
 
 double Vector::norm2() const {

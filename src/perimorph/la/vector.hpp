@@ -10,6 +10,7 @@
 #include "perimorph/la/distribution.hpp"
 #include "perimorph/la/petsc_fwd.hpp"
 
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -47,6 +48,10 @@ class Vector {
   /// The whole vector in the assembly's numbering on every process
   /// (collective). Without a distribution: to_std.
   std::vector<double> to_replicated() const;
+  /// The entries this process owns, in a whole-length array in the
+  /// assembly's numbering, `elsewhere` at the others (nothing is sent).
+  /// Without a distribution: to_std.
+  std::vector<double> owned_entries(double elsewhere) const;
   /// The distribution (null for a serial vector).
   const Distribution* distribution() const { return distribution_.get(); }
   /// The same, shared (for what outlives the vector: la::NodeGather).
@@ -72,5 +77,13 @@ class Vector {
   /// another process owns it. bs: the block size.
   Index local_index(Index i, Index bs) const;
 };
+
+/// init + Σ term(k) over the entries k = 0 … size − 1 of a vector laid out
+/// by `distribution` in dof nodes of `block_size` entries: without one (one
+/// process), in order; spread over processes, each adds the entries it owns
+/// and the sums are added in rank order (la::sum_over_processes: the same
+/// bits on every process; collective).
+double add_over_entries(const Distribution* distribution, int block_size, std::size_t size, double init,
+                        const std::function<double(std::size_t)>& term);
 
 }  // namespace perimorph::la

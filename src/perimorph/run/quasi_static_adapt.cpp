@@ -14,7 +14,7 @@ namespace perimorph::run {
 
 double QuasiStaticRun::strain_energy() {
   system_->apply_K(u_, internal_);
-  const std::vector<double> a = gather(u_), b = gather(internal_);
+  const std::vector<double> a = owned(u_), b = owned(internal_);
   return add_over_dofs(0.0, [&](std::size_t k) { return 0.5 * a[k] * b[k]; });
 }
 
@@ -52,7 +52,7 @@ void QuasiStaticRun::adapt_for_next() {
   la::Vector Ku = system_->make_vector();
   u_.assign_replicated(u_prev_);
   system_->apply_K(u_, Ku);
-  fint_prev_ = gather(Ku);
+  fint_prev_ = owned(Ku);
 }
 
 void QuasiStaticRun::rebuild() {

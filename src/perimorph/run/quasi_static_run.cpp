@@ -105,10 +105,7 @@ QuasiStaticRun::~QuasiStaticRun() = default;
 void QuasiStaticRun::choose_gather() {
   halo_.reset();
   const auto* d = u_.distribution();
-  // The damage reads u beyond the part (every process computes the same
-  // proposal from the whole state, its Newton solve the whole residual):
-  // gathered whole there.
-  if (!d || damage_) return;
+  if (!d) return;
   std::vector<Index> nodes = setup::nodes_read(*disc_);
   std::vector<char> read(static_cast<std::size_t>(d->num_nodes()), 0);
   for (Index n : nodes) read[static_cast<std::size_t>(n)] = 1;
@@ -119,8 +116,12 @@ void QuasiStaticRun::choose_gather() {
 }
 
 std::vector<double> QuasiStaticRun::gather(const la::Vector& v) {
-  if (!halo_) return v.to_replicated();
+  if (!halo_) return v.to_std();
   return halo_->gathered(v, std::numeric_limits<double>::quiet_NaN());
+}
+
+std::vector<double> QuasiStaticRun::owned(const la::Vector& v) const {
+  return v.owned_entries(std::numeric_limits<double>::quiet_NaN());
 }
 
 std::vector<double> QuasiStaticRun::whole(const std::vector<double>& v) const {
@@ -131,17 +132,8 @@ std::vector<double> QuasiStaticRun::whole(const std::vector<double>& v) const {
 }
 
 double QuasiStaticRun::add_over_dofs(double init, const std::function<double(std::size_t)>& term) const {
-  const la::Distribution* d = u_.distribution();
-  const std::size_t n = static_cast<std::size_t>(disc_->dofmap.num_dofs());
-  if (!d) {
-    for (std::size_t k = 0; k < n; ++k) init += term(k);
-    return init;
-  }
-  const auto dim = static_cast<std::size_t>(disc_->dim());
-  double mine = 0.0;
-  for (std::size_t k = 0; k < n; ++k)
-    if (d->owns(static_cast<Index>(k / dim))) mine += term(k);
-  return init + la::sum_over_processes({mine})[0];
+  return la::add_over_entries(u_.distribution(), disc_->dim(),
+                              static_cast<std::size_t>(disc_->dofmap.num_dofs()), init, term);
 }
 
 void QuasiStaticRun::apply_load(int i) {
@@ -190,7 +182,7 @@ void QuasiStaticRun::solve() {
     // on the elastic step from the last state.
     system_->apply_K(u_, internal_);
     state_.u = gather(u_);
-    fint_ = gather(internal_);
+    fint_ = owned(internal_);
     work = add_over_dofs(
         work, [&](std::size_t k) { return 0.5 * (fint_[k] + fint_prev_[k]) * (state_.u[k] - u_prev_[k]); });
     return;
@@ -277,7 +269,7 @@ void QuasiStaticRun::record(bool force_vtu) {
   const std::vector<double>& F = system_->applied_force();
   if ((fracture_ || damage_) && rec_.break_iterations > 0) {
     system_->apply_K(u_, internal_);
-    fint_ = gather(internal_);
+    fint_ = owned(internal_);
   }
   if (damage_) {
     const evolution::EnergyLedger& e = state_.energy;

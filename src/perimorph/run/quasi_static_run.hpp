@@ -104,8 +104,11 @@ class QuasiStaticRun {
   [[noreturn]] void stop_unsupported(const std::exception& e);
   /// Sets halo_ for the current system (after it is built or restored).
   void choose_gather();
-  /// v's entries this process reads (halo_), or the whole vector (collective).
+  /// v's entries at the nodes this process reads (halo_; collective), or
+  /// on one process v.
   std::vector<double> gather(const la::Vector& v);
+  /// v's entries this process owns (NaN elsewhere), or on one process v.
+  std::vector<double> owned(const la::Vector& v) const;
   /// The whole vector of `v`, which is exact at the dofs this process owns
   /// (collective): what a checkpoint and the summary hold.
   std::vector<double> whole(const std::vector<double>& v) const;
@@ -147,9 +150,9 @@ class QuasiStaticRun {
   std::unique_ptr<RunOutput> output_;
   evolution::RunState state_;
   la::Vector u_, internal_;  ///< the solution (initial guess of the next solve), K u
-  /// Spread over processes, for a run without damage: u and K u are brought
-  /// to each process at setup::nodes_read only (NaN elsewhere in state_.u,
-  /// u_prev_, fint_, fint_prev_); empty: gathered whole.
+  /// Spread over processes (empty on one): u is brought to each process at
+  /// setup::nodes_read only, NaN elsewhere in state_.u and u_prev_; K u is
+  /// read at the owned dofs only, NaN elsewhere in fint_ and fint_prev_.
   std::optional<la::NodeGather> halo_;
   std::vector<double> u_prev_, fint_prev_, fint_;  ///< of the last recorded state, and fint of this one
   IncrementRecord rec_;                            ///< of the increment in progress
