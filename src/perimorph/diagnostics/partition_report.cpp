@@ -103,9 +103,8 @@ std::string partition_report(const setup::Discretization& disc, int parts) {
           : std::string());
   if (parts > 1)
     out += fmt::format(
-        "           u after each solve (fracture and elastic runs): the largest part receives {} of the {} "
-        "dof "
-        "nodes ({:.3f}; gathered whole: {}, {:.3f})\n",
+        "           u after each solve: the largest part receives {} of the {} dof nodes ({:.3f}; "
+        "gathered whole: {}, {:.3f})\n",
         max_received, disc.dofmap.num_nodes(),
         per(static_cast<std::size_t>(max_received), static_cast<std::size_t>(disc.dofmap.num_nodes())),
         max_received_whole,

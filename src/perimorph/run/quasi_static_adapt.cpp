@@ -59,14 +59,15 @@ void QuasiStaticRun::rebuild() {
   const auto t0 = std::chrono::steady_clock::now();
   progress_->phase("remodel");
   const double before_energy = strain_energy();
+  // Carried over whole (from the owners where a process holds its halo only).
+  const std::vector<double> u_whole = whole(state_.u), u_prev_whole = whole(u_prev_);
   auto next = std::make_unique<setup::Discretization>(setup::rebuild_for_alpha(*disc_, state_.alpha));
   system::Remodelled r =
       system::remodel(*system_, *disc_, *next, &state_.failed, setup::build_dirichlet(*next),
                       setup::build_external_force(*next), state_.history);
   const Index n = next->dofmap.num_dofs();
-  // Carried over whole (from the owners where a process holds its halo only).
-  state_.u = system::transfer_dof_vector(*disc_, *next, whole(state_.u));
-  u_prev_ = system::transfer_dof_vector(*disc_, *next, whole(u_prev_));
+  state_.u = system::transfer_dof_vector(*disc_, *next, u_whole);
+  u_prev_ = system::transfer_dof_vector(*disc_, *next, u_prev_whole);
   fint_prev_.assign(static_cast<std::size_t>(n),
                     0.0);  // recomputed where it is used next (record, adapt_for_next)
   system_ = std::move(r.system);
