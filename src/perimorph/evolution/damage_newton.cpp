@@ -5,8 +5,11 @@
 #include "perimorph/assembly/sparsity.hpp"
 #include "perimorph/fem/damage_law.hpp"
 #include "perimorph/la/nonlinear_solver.hpp"
+#include "perimorph/setup/discretization.hpp"
 
 #include <Eigen/Core>
+
+#include <limits>
 
 namespace perimorph::evolution {
 
@@ -105,7 +108,10 @@ DamageNewtonReport solve_damage_newton(const setup::Discretization& disc,
       for (Index node : disc.dofmap.cell_nodes(c))
         if (distribution->owns(node)) mine[static_cast<std::size_t>(c)] = 1;
   }
-  const std::vector<double> b = system.rhs_unit().to_replicated();  // fixed during the solve
+  // Each process keeps its own entries of r (NonlinearSolver): A u, b and
+  // K_Δ u are read where it owns them, u where its cells need it.
+  constexpr double elsewhere = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<double> b = system.rhs_unit().owned_entries(elsewhere);  // fixed during the solve
   auto residual = [&](std::span<const double> x, std::span<double> r) {
     uv.assign_replicated(x);
     system.A().mult(uv, Au);
@@ -115,7 +121,7 @@ DamageNewtonReport solve_damage_newton(const setup::Discretization& disc,
                                   [&](Index c) { return cells[static_cast<std::size_t>(c)] != 0; });
     local.finalize();
     local.mult(uv, fcorr);
-    const auto a = Au.to_replicated(), f = fcorr.to_replicated();
+    const auto a = Au.owned_entries(elsewhere), f = fcorr.owned_entries(elsewhere);
     for (Index i = 0; i < n; ++i) {
       const auto k = static_cast<std::size_t>(i);
       r[k] = a[k] - lambda * b[k] - (system.prescribed(i) ? 0.0 : f[k]);
@@ -133,6 +139,7 @@ DamageNewtonReport solve_damage_newton(const setup::Discretization& disc,
   // Each step by GMRES with the run's preconditioner as it stands (with
   // -ksp_reuse_preconditioner, the GAMG of an earlier A(h): no set-up here).
   la::NonlinearSolver snes(J, residual, jacobian, 1e-6, 1e-300, 12, "damage_", system.solver());
+  snes.read_only(setup::nodes_read(disc), disc.dim());
   la::Vector x = system.make_vector();
   x.assign_replicated(u);
   const la::NonlinearReport rep = snes.solve(x);

@@ -5,6 +5,7 @@
 #include <petscsnes.h>
 
 #include <exception>
+#include <limits>
 #include <utility>
 
 namespace perimorph::la {
@@ -103,11 +104,20 @@ NonlinearSolver::NonlinearSolver(Matrix& J, Residual residual, Jacobian jacobian
   PM_PETSC(SNESSetFromOptions(snes_));
 }
 
+void NonlinearSolver::read_only(std::vector<Index> nodes, int block_size) {
+  if (J_.distribution()) reads_.emplace(J_.distribution(), block_size, std::move(nodes));
+}
+
+std::vector<double> NonlinearSolver::gathered(PetscVecHandle u) {
+  PM_PETSC(VecCopy(u, u_whole_.handle()));
+  if (reads_) return reads_->gathered(u_whole_, std::numeric_limits<double>::quiet_NaN());
+  return u_whole_.to_replicated();
+}
+
 void NonlinearSolver::evaluate_residual(PetscVecHandle u, PetscVecHandle r) {
   ++residual_evaluations;
   if (J_.distribution()) {
-    PM_PETSC(VecCopy(u, u_whole_.handle()));
-    const std::vector<double> x = u_whole_.to_replicated();
+    const std::vector<double> x = gathered(u);
     std::vector<double> f(x.size());
     residual_(x, f);
     r_whole_.assign_replicated(f);
@@ -129,8 +139,7 @@ void NonlinearSolver::evaluate_residual(PetscVecHandle u, PetscVecHandle r) {
 void NonlinearSolver::evaluate_jacobian(PetscVecHandle u) {
   J_.zero_entries();
   if (J_.distribution()) {
-    PM_PETSC(VecCopy(u, u_whole_.handle()));
-    jacobian_(u_whole_.to_replicated(), J_);
+    jacobian_(gathered(u), J_);
   } else {
     PetscInt n = 0;
     PM_PETSC(VecGetLocalSize(u, &n));

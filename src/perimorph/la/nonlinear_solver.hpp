@@ -12,11 +12,13 @@
 #include "perimorph/core/types.hpp"
 #include "perimorph/la/linear_solver.hpp"
 #include "perimorph/la/matrix.hpp"
+#include "perimorph/la/node_gather.hpp"
 #include "perimorph/la/petsc_fwd.hpp"
 #include "perimorph/la/vector.hpp"
 
 #include <exception>
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -51,6 +53,11 @@ class NonlinearSolver {
   NonlinearSolver(const NonlinearSolver&) = delete;
   NonlinearSolver& operator=(const NonlinearSolver&) = delete;
 
+  /// On several processes, the callbacks get u at these dof nodes (of
+  /// `block_size` entries) only (assembly numbering; NaN at the others: what
+  /// this process's rows read, setup::nodes_read) instead of whole. Nothing
+  /// changes on one process.
+  void read_only(std::vector<Index> nodes, int block_size);
   /// Solves F(u) = 0 from u (the initial guess in, the last iterate out).
   /// Never throws for non-convergence: the report says how it ended. Stops
   /// early (not converged, reason STAGNATED) when ||F|| fell by less than
@@ -59,8 +66,8 @@ class NonlinearSolver {
 
   // For the PETSc callbacks (la/nonlinear_solver.cpp): F and J at u. On
   // several processes (a distributed J), u is gathered whole for the
-  // callbacks (assembly numbering, on every process) and each process keeps
-  // its own entries of the r they compute whole.
+  // callbacks (or at read_only's nodes; assembly numbering) and each process
+  // keeps its own entries of the r they compute whole.
   void evaluate_residual(PetscVecHandle u, PetscVecHandle r);
   void evaluate_jacobian(PetscVecHandle u);
   std::exception_ptr callback_error;  ///< thrown in a callback, rethrown by solve
@@ -74,7 +81,10 @@ class NonlinearSolver {
   Residual residual_;
   Jacobian jacobian_;
   Vector r_;
-  Vector u_whole_, r_whole_;  ///< scratch of a distributed solve (J's layout)
+  Vector u_whole_, r_whole_;         ///< scratch of a distributed solve (J's layout)
+  std::optional<NodeGather> reads_;  ///< read_only's nodes (empty: u whole)
+  /// u as the callbacks get it (distributed J).
+  std::vector<double> gathered(PetscVecHandle u);
 };
 
 }  // namespace perimorph::la
