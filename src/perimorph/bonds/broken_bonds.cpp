@@ -14,16 +14,14 @@ BondId BondId::canonical() const {
 }
 
 BrokenBonds::BrokenBonds(Index num_cells, int points_per_cell)
-    : n_(points_per_cell),
-      by_cell_(static_cast<std::size_t>(num_cells)),
-      per_cell_(static_cast<std::size_t>(num_cells), 0) {}
+    : n_(points_per_cell), touched_(static_cast<std::size_t>(num_cells), false) {}
 
 bool BrokenBonds::add(const BondId& bond) {
   const BondId b = bond.canonical();
-  PERIMORPH_ASSERT(b.e >= 0 && static_cast<std::size_t>(b.f) < by_cell_.size(), "bond cell out of range");
+  PERIMORPH_ASSERT(b.e >= 0 && static_cast<std::size_t>(b.f) < touched_.size(), "bond cell out of range");
   PERIMORPH_ASSERT(b.g >= 0 && b.g < n_ && b.h >= 0 && b.h < n_ && !(b.e == b.f && b.g == b.h),
                    "bond point out of range");
-  auto& codes = by_cell_[static_cast<std::size_t>(b.e)][b.f];
+  auto& codes = by_pair_[key(b.e, b.f)];
   auto insert = [&](std::uint32_t code) {
     const auto at = std::lower_bound(codes.begin(), codes.end(), code);
     if (at != codes.end() && *at == code) return false;
@@ -34,8 +32,8 @@ bool BrokenBonds::add(const BondId& bond) {
   if (!insert(static_cast<std::uint32_t>(b.g) * n + static_cast<std::uint32_t>(b.h))) return false;
   if (b.e == b.f) insert(static_cast<std::uint32_t>(b.h) * n + static_cast<std::uint32_t>(b.g));
   ++count_;
-  ++per_cell_[static_cast<std::size_t>(b.e)];
-  if (b.f != b.e) ++per_cell_[static_cast<std::size_t>(b.f)];
+  touched_[static_cast<std::size_t>(b.e)] = true;
+  touched_[static_cast<std::size_t>(b.f)] = true;
   return true;
 }
 
@@ -47,12 +45,20 @@ bool BrokenBonds::contains(const BondId& bond) const {
 }
 
 std::span<const std::uint32_t> BrokenBonds::pair(Index e, Index f) const {
-  if (by_cell_.empty()) return {};
-  assert(e >= 0 && e <= f && static_cast<std::size_t>(f) < by_cell_.size());
-  const auto& row = by_cell_[static_cast<std::size_t>(e)];
-  const auto it = row.find(f);
-  if (it == row.end()) return {};
+  assert(touched_.empty() || (e >= 0 && e <= f && static_cast<std::size_t>(f) < touched_.size()));
+  // Most pairs have no failed bond: the two bits decide without hashing.
+  if (!touches(e) || !touches(f)) return {};
+  const auto it = by_pair_.find(key(e, f));
+  if (it == by_pair_.end()) return {};
   return it->second;
+}
+
+std::size_t BrokenBonds::bytes() const {
+  // libstdc++'s node: the next pointer, the key and the vector; a pointer per bucket.
+  std::size_t b = touched_.size() / 8 + by_pair_.bucket_count() * sizeof(void*);
+  for (const auto& [k, codes] : by_pair_)
+    b += sizeof(void*) + sizeof(k) + sizeof(codes) + codes.capacity() * sizeof(std::uint32_t);
+  return b;
 }
 
 }  // namespace perimorph::bonds

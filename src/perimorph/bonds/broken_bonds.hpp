@@ -4,14 +4,17 @@
 // is kept under its cell pair with e ≤ f as the code g · n + h (n points per
 // cell), sorted, so the pair kernel can skip it by a binary search. For e = f
 // both orders (g, h) and (h, g) are stored, as the kernel visits both.
-// Nothing else is stored per bond: intact bonds stay implicit.
+// Nothing else is stored per bond: intact bonds stay implicit. The store is
+// as large as the failures, not the model: a hash of the cell pairs that
+// have a failed bond and a bit per cell (every process holds the whole set,
+// so a byte per cell would be paid P times over; issue 17).
 
 #include "perimorph/core/types.hpp"
 
 #include <cassert>
 #include <cstdint>
-#include <map>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 namespace perimorph::bonds {
@@ -36,23 +39,29 @@ class BrokenBonds {
   std::span<const std::uint32_t> pair(Index e, Index f) const;
   /// Any broken bond with a point in cell c.
   bool touches(Index c) const {
-    assert(per_cell_.empty() || (c >= 0 && static_cast<std::size_t>(c) < per_cell_.size()));
-    return !per_cell_.empty() && per_cell_[static_cast<std::size_t>(c)] > 0;
+    assert(touched_.empty() || (c >= 0 && static_cast<std::size_t>(c) < touched_.size()));
+    return !touched_.empty() && touched_[static_cast<std::size_t>(c)];
   }
   std::size_t size() const { return count_; }
   bool empty() const { return count_ == 0; }
   int points_per_cell() const { return n_; }
   /// The bond's cells and points exist in this set's model.
   bool valid(const BondId& b) const {
-    const auto cells = static_cast<Index>(by_cell_.size());
+    const auto cells = static_cast<Index>(touched_.size());
     return b.e >= 0 && b.e < cells && b.f >= 0 && b.f < cells && b.g >= 0 && b.g < n_ && b.h >= 0 && b.h < n_;
   }
 
+  /// Bytes held: the pairs' codes, their hash and the bit per cell.
+  std::size_t bytes() const;
+
  private:
+  static std::uint64_t key(Index e, Index f) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(e)) << 32U) | static_cast<std::uint32_t>(f);
+  }
   int n_ = 0;
   std::size_t count_ = 0;
-  std::vector<std::map<Index, std::vector<std::uint32_t>>> by_cell_;  ///< [e][f], e ≤ f
-  std::vector<int> per_cell_;                                         ///< broken bonds touching each cell
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> by_pair_;  ///< key(e, f), e ≤ f
+  std::vector<bool> touched_;  ///< a broken bond has a point in the cell
 };
 
 }  // namespace perimorph::bonds
