@@ -17,6 +17,7 @@
 #include "perimorph/evolution/floating_parts.hpp"
 #include "perimorph/la/linear_solver.hpp"
 #include "perimorph/la/node_gather.hpp"
+#include "perimorph/la/owned_dofs.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/la/shell_matrix.hpp"
 #include "perimorph/partition/dof_layout.hpp"
@@ -245,7 +246,7 @@ TEST(NodeGather, BringsTheNodesReadAndLeavesTheRest) {
 
 // What the run reads of K u (the owned entries, nothing sent) and how it
 // sums over the dofs: each entry once, by its owner.
-TEST(DistributedVector, OwnedEntriesAndSumsOverTheOwnedEntries) {
+TEST(DistributedVector, OwnedEntriesInAWholeLengthArray) {
   const auto m = setup::build_discretization(mixed_plate());
   const auto d = distribute(m);
   const Index dim = m.dim();
@@ -262,11 +263,54 @@ TEST(DistributedVector, OwnedEntriesAndSumsOverTheOwnedEntries) {
     else
       EXPECT_TRUE(std::isnan(mine[i])) << "entry " << i;
   }
+}
+
+// What a run keeps of K u and its last recorded state (la::OwnedDofs): the
+// dofs a process owns, ascending, and nothing else; the values there come
+// from the vector without sending anything, and go back whole from every
+// process's share.
+TEST(DistributedVector, HeldAtTheOwnedDofsOnly) {
+  const auto m = setup::build_discretization(mixed_plate());
+  const auto d = distribute(m);
+  const Index dim = m.dim();
+  const Index n = m.dofmap.num_dofs();
+  std::vector<double> values(static_cast<std::size_t>(n));
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = 0.5 + static_cast<double>(i % 7);
+  const la::OwnedDofs owned(d.get(), dim, n);
+  EXPECT_EQ(static_cast<Index>(owned.size()), d->owned_nodes() * dim);
+  std::vector<char> seen(values.size(), 0);
+  for (std::size_t j = 0; j < owned.size(); ++j) {
+    const Index k = owned.dof(j);
+    EXPECT_TRUE(d->owns(k / dim)) << "dof " << k;
+    if (j > 0) {
+      EXPECT_LT(owned.dof(j - 1), k);
+    }
+    EXPECT_EQ(owned.position(k), static_cast<std::ptrdiff_t>(j));
+    seen[static_cast<std::size_t>(k)] = 1;
+  }
+  for (Index k = 0; k < n; ++k) {
+    if (!seen[static_cast<std::size_t>(k)]) {
+      EXPECT_EQ(owned.position(k), -1) << "dof " << k;
+    }
+  }
+
+  la::Vector v(d, dim);
+  v.assign_replicated(values);
+  const std::vector<double> mine = v.at_owned(owned);
+  EXPECT_EQ(mine, owned.of(values));
+  la::Vector w(d, dim);
+  w.assign_owned(owned, mine);
+  EXPECT_EQ(w.to_replicated(), values);
   // Small integers: any order of the additions gives the same sum.
-  const double sum = la::add_over_entries(d.get(), dim, n, 1.0, [&](std::size_t i) { return mine[i]; });
+  const double sum = owned.sum(1.0, [&](std::size_t j) { return mine[j]; });
   double expected = 1.0;
   for (double x : values) expected += x;
   EXPECT_EQ(sum, expected);
+
+  const la::OwnedDofs every(nullptr, dim, n);
+  EXPECT_EQ(every.size(), values.size());
+  EXPECT_EQ(every.of(values), values);
+  EXPECT_EQ(every.position(n - 1), n - 1);
 }
 
 // The run's sums over the dofs (energies, reactions) add each process's

@@ -5,6 +5,7 @@
 #include "perimorph/core/error.hpp"
 #include "perimorph/evolution/damage_newton.hpp"
 #include "perimorph/fem/material.hpp"
+#include "perimorph/la/owned_dofs.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/partition/partition.hpp"
 
@@ -40,10 +41,13 @@ double potential(const system::ConstrainedSystem& system, std::span<const double
   la::Vector x = system.make_vector(), Kx = system.make_vector();
   x.assign_replicated(u);
   system.K().mult(x, Kx);
-  const auto k = Kx.owned_entries(std::numeric_limits<double>::quiet_NaN());
+  const la::OwnedDofs owned(x.distribution(), dim, static_cast<Index>(u.size()));
+  const auto k = Kx.at_owned(owned);
   const auto& F = system.applied_force();
-  return la::add_over_entries(x.distribution(), dim, u.size(), 0.0,
-                              [&](std::size_t i) { return 0.5 * u[i] * k[i] - lambda * F[i] * u[i]; });
+  return owned.sum(0.0, [&](std::size_t j) {
+    const auto i = static_cast<std::size_t>(owned.dof(j));
+    return 0.5 * u[i] * k[j] - lambda * F[i] * u[i];
+  });
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "perimorph/la/vector.hpp"
 
+#include "perimorph/la/owned_dofs.hpp"
 #include "perimorph/la/petsc_check.hpp"
 #include "perimorph/la/petsc_session.hpp"
 
@@ -79,16 +80,7 @@ Index Vector::local_index(Index i, Index bs) const {
 }
 
 void Vector::add_at(std::span<const Index> indices, std::span<const double> values) {
-  PERIMORPH_ASSERT(indices.size() == values.size(), "add_at: sizes differ");
-  PetscInt bs = 1;
-  PM_PETSC(VecGetBlockSize(v_, &bs));
-  PetscScalar* a = nullptr;
-  PM_PETSC(VecGetArray(v_, &a));
-  for (std::size_t k = 0; k < indices.size(); ++k) {
-    const Index at = local_index(indices[k], bs);
-    if (at >= 0) a[at] += values[k];
-  }
-  PM_PETSC(VecRestoreArray(v_, &a));
+  change_at(indices, values, true);
 }
 
 void Vector::set_at(std::span<const Index> indices, double value) {
@@ -99,6 +91,27 @@ void Vector::set_at(std::span<const Index> indices, double value) {
   for (Index i : indices) {
     const Index at = local_index(i, bs);
     if (at >= 0) a[at] = value;
+  }
+  PM_PETSC(VecRestoreArray(v_, &a));
+}
+
+void Vector::set_at(std::span<const Index> indices, std::span<const double> values) {
+  change_at(indices, values, false);
+}
+
+void Vector::change_at(std::span<const Index> indices, std::span<const double> values, bool add) {
+  PERIMORPH_ASSERT(indices.size() == values.size(), "add_at/set_at: sizes differ");
+  PetscInt bs = 1;
+  PM_PETSC(VecGetBlockSize(v_, &bs));
+  PetscScalar* a = nullptr;
+  PM_PETSC(VecGetArray(v_, &a));
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    const Index at = local_index(indices[k], bs);
+    if (at < 0) continue;
+    if (add)
+      a[at] += values[k];
+    else
+      a[at] = values[k];
   }
   PM_PETSC(VecRestoreArray(v_, &a));
 }
@@ -169,17 +182,29 @@ std::vector<double> Vector::owned_entries(double elsewhere) const {
   return out;
 }
 
-double add_over_entries(const Distribution* distribution, int block_size, std::size_t size, double init,
-                        const std::function<double(std::size_t)>& term) {
-  if (!distribution) {
-    for (std::size_t k = 0; k < size; ++k) init += term(k);
-    return init;
-  }
-  const auto bs = static_cast<std::size_t>(block_size);
-  double mine = 0.0;
-  for (std::size_t k = 0; k < size; ++k)
-    if (distribution->owns(static_cast<Index>(k / bs))) mine += term(k);
-  return init + sum_over_processes({mine})[0];
+std::vector<double> Vector::at_owned(const OwnedDofs& owned) const {
+  if (!distribution_) return to_std();
+  PetscInt bs = 1;
+  PM_PETSC(VecGetBlockSize(v_, &bs));
+  std::vector<double> out(owned.size());
+  const PetscScalar* a = nullptr;
+  PM_PETSC(VecGetArrayRead(v_, &a));
+  for (std::size_t j = 0; j < out.size(); ++j) out[j] = a[local_index(owned.dof(j), bs)];
+  PM_PETSC(VecRestoreArrayRead(v_, &a));
+  return out;
+}
+
+void Vector::assign_owned(const OwnedDofs& owned, std::span<const double> values) {
+  if (!distribution_) return assign(values);
+  PetscInt bs = 1;
+  PM_PETSC(VecGetBlockSize(v_, &bs));
+  PERIMORPH_ASSERT(
+      values.size() == owned.size() && static_cast<Index>(owned.size()) == distribution_->owned_nodes() * bs,
+      "assign_owned: not this process's owned entries");
+  PetscScalar* a = nullptr;
+  PM_PETSC(VecGetArray(v_, &a));
+  for (std::size_t j = 0; j < values.size(); ++j) a[local_index(owned.dof(j), bs)] = values[j];
+  PM_PETSC(VecRestoreArray(v_, &a));
 }
 
 double Vector::norm2() const {

@@ -10,12 +10,13 @@
 #include "perimorph/la/distribution.hpp"
 #include "perimorph/la/petsc_fwd.hpp"
 
-#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
 
 namespace perimorph::la {
+
+class OwnedDofs;
 
 class Vector {
  public:
@@ -41,6 +42,8 @@ class Vector {
   void add_at(std::span<const Index> indices, std::span<const double> values);
   /// this[indices[k]] = value (as add_at).
   void set_at(std::span<const Index> indices, double value);
+  /// this[indices[k]] = values[k] (as add_at; indices unique).
+  void set_at(std::span<const Index> indices, std::span<const double> values);
   std::vector<double> to_std() const;
   /// Sets the owned entries from `values`, the whole vector in the assembly's
   /// numbering (the same on every process). Without a distribution: assign.
@@ -52,6 +55,12 @@ class Vector {
   /// assembly's numbering, `elsewhere` at the others (nothing is sent).
   /// Without a distribution: to_std.
   std::vector<double> owned_entries(double elsewhere) const;
+  /// The entries at `owned`'s dofs (this process's, la::OwnedDofs), in its
+  /// order (nothing is sent). Without a distribution: to_std.
+  std::vector<double> at_owned(const OwnedDofs& owned) const;
+  /// Sets the entries at `owned`'s dofs from `values`, in its order. Without
+  /// a distribution: assign.
+  void assign_owned(const OwnedDofs& owned, std::span<const double> values);
   /// The distribution (null for a serial vector).
   const Distribution* distribution() const { return distribution_.get(); }
   /// The same, shared (for what outlives the vector: la::NodeGather).
@@ -76,14 +85,8 @@ class Vector {
   /// Where entry i (assembly numbering) is in this process's array; −1 if
   /// another process owns it. bs: the block size.
   Index local_index(Index i, Index bs) const;
+  /// add_at (add) or set_at (values) on the owned entries.
+  void change_at(std::span<const Index> indices, std::span<const double> values, bool add);
 };
-
-/// init + Σ term(k) over the entries k = 0 … size − 1 of a vector laid out
-/// by `distribution` in dof nodes of `block_size` entries: without one (one
-/// process), in order; spread over processes, each adds the entries it owns
-/// and the sums are added in rank order (la::sum_over_processes: the same
-/// bits on every process; collective).
-double add_over_entries(const Distribution* distribution, int block_size, std::size_t size, double init,
-                        const std::function<double(std::size_t)>& term);
 
 }  // namespace perimorph::la

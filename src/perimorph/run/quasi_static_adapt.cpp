@@ -15,7 +15,7 @@ namespace perimorph::run {
 double QuasiStaticRun::strain_energy() {
   system_->apply_K(u_, internal_);
   const std::vector<double> a = owned(u_), b = owned(internal_);
-  return add_over_dofs(0.0, [&](std::size_t k) { return 0.5 * a[k] * b[k]; });
+  return add_over_dofs(0.0, [&](std::size_t j) { return 0.5 * a[j] * b[j]; });
 }
 
 bool QuasiStaticRun::grow_alpha() {
@@ -48,9 +48,9 @@ void QuasiStaticRun::adapt_for_next() {
   if (!adaptivity_ || spec.update != casefile::AdaptivityUpdate::increment || spec.redo) return;
   if (!grow_alpha()) return;
   // The next increment's elastic step starts from the last state on the new model.
-  u_prev_ = state_.u;
+  u_prev_ = owned_dofs_.of(state_.u);
   la::Vector Ku = system_->make_vector();
-  u_.assign_replicated(u_prev_);
+  u_.assign_replicated(state_.u);
   system_->apply_K(u_, Ku);
   fint_prev_ = owned(Ku);
 }
@@ -60,16 +60,13 @@ void QuasiStaticRun::rebuild() {
   progress_->phase("remodel");
   const double before_energy = strain_energy();
   // Carried over whole (from the owners where a process holds its halo only).
-  const std::vector<double> u_whole = whole(state_.u), u_prev_whole = whole(u_prev_);
+  const std::vector<double> u_whole = whole(state_.u), u_prev_whole = whole_of_owned(u_prev_);
   auto next = std::make_unique<setup::Discretization>(setup::rebuild_for_alpha(*disc_, state_.alpha));
   system::Remodelled r =
       system::remodel(*system_, *disc_, *next, &state_.failed, setup::build_dirichlet(*next),
                       setup::build_external_force(*next), state_.history);
-  const Index n = next->dofmap.num_dofs();
   state_.u = system::transfer_dof_vector(*disc_, *next, u_whole);
-  u_prev_ = system::transfer_dof_vector(*disc_, *next, u_prev_whole);
-  fint_prev_.assign(static_cast<std::size_t>(n),
-                    0.0);  // recomputed where it is used next (record, adapt_for_next)
+  std::vector<double> u_prev_next = system::transfer_dof_vector(*disc_, *next, u_prev_whole);
   system_ = std::move(r.system);
   system_->attach_solver();
   setup_.sets = setup::reaction_sets(*next);
@@ -79,6 +76,8 @@ void QuasiStaticRun::rebuild() {
   internal_ = system_->make_vector();
   u_.assign_replicated(state_.u);
   choose_gather();
+  u_prev_ = owned_dofs_.of(u_prev_next);
+  fint_prev_.assign(owned_dofs_.size(), 0.0);  // recomputed where it is used next (record, adapt_for_next)
   state_.energy.model_change += strain_energy() - before_energy;
   for (auto& component : setup_.components) {
     try {

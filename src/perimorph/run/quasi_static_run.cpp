@@ -17,20 +17,22 @@ namespace perimorph::run {
 
 namespace {
 
-/// The reaction of each set: Σ over its nodes of r (every node on one
-/// process; spread over processes, the nodes each owns, the sums added in
-/// rank order: collective).
+/// The reaction of each set: Σ over its nodes of r (r at `owned`'s dofs:
+/// every node on one process; spread over processes, the nodes each owns,
+/// the sums added in rank order: collective).
 std::vector<Vec3> sum_reactions(const std::vector<setup::ReactionSet>& sets, std::span<const double> r,
-                                int dim, const la::Distribution* owned) {
+                                int dim, const la::OwnedDofs& owned, bool spread) {
   std::vector<Vec3> out;
   for (const auto& s : sets) {
     Vec3 f = Vec3::Zero();
-    for (Index n : s.dof_nodes)
-      if (!owned || owned->owns(n))
-        for (int d = 0; d < dim; ++d) f[d] += r[static_cast<std::size_t>(n * dim + d)];
+    for (Index n : s.dof_nodes) {
+      const std::ptrdiff_t at = owned.position(n * dim);
+      if (at < 0) continue;
+      for (int d = 0; d < dim; ++d) f[d] += r[static_cast<std::size_t>(at + d)];
+    }
     out.push_back(f);
   }
-  if (!owned) return out;
+  if (!spread) return out;
   std::vector<double> flat;
   for (const Vec3& f : out) flat.insert(flat.end(), f.data(), f.data() + 3);
   flat = la::sum_over_processes(std::move(flat));
@@ -45,9 +47,7 @@ QuasiStaticRun::QuasiStaticRun(const setup::Discretization& disc, const RunOptio
       start_(std::chrono::steady_clock::now()),
       state_(disc),
       u_(disc.dofmap.num_dofs(), disc.dim()),
-      internal_(disc.dofmap.num_dofs(), disc.dim()),
-      u_prev_(static_cast<std::size_t>(disc.dofmap.num_dofs()), 0.0),
-      fint_prev_(static_cast<std::size_t>(disc.dofmap.num_dofs()), 0.0) {
+      internal_(disc.dofmap.num_dofs(), disc.dim()) {
   const auto& config = disc.config;
   if (!options.progress)
     own_progress_ = std::make_unique<io::ProgressLine>(increments(), !options.quiet, start_);
@@ -84,7 +84,15 @@ QuasiStaticRun::QuasiStaticRun(const setup::Discretization& disc, const RunOptio
                                           summary_.reaction_names);
   }
   system_->attach_solver();
+  std::vector<double>().swap(setup_.F);  // the system holds the applied force
   choose_gather();
+  if (options.restart.empty()) {
+    u_prev_.assign(owned_dofs_.size(), 0.0);
+    fint_prev_.assign(owned_dofs_.size(), 0.0);
+  } else {  // restore() read them whole
+    u_prev_ = owned_dofs_.of(u_prev_);
+    fint_prev_ = owned_dofs_.of(fint_prev_);
+  }
   summary_.csv_path = output_->csv_path();
   summary_.pvd_path = config.output.vtu ? output_->pvd_path() : "";
   progress_->start_increments();
@@ -105,6 +113,7 @@ QuasiStaticRun::~QuasiStaticRun() = default;
 void QuasiStaticRun::choose_gather() {
   halo_.reset();
   const auto* d = u_.distribution();
+  owned_dofs_ = la::OwnedDofs(d, disc_->dim(), disc_->dofmap.num_dofs());
   if (!d) return;
   std::vector<Index> nodes = setup::nodes_read(*disc_);
   std::vector<char> read(static_cast<std::size_t>(d->num_nodes()), 0);
@@ -121,7 +130,7 @@ std::vector<double> QuasiStaticRun::gather(const la::Vector& v) {
 }
 
 std::vector<double> QuasiStaticRun::owned(const la::Vector& v) const {
-  return v.owned_entries(std::numeric_limits<double>::quiet_NaN());
+  return v.at_owned(owned_dofs_);
 }
 
 std::vector<double> QuasiStaticRun::whole(const std::vector<double>& v) const {
@@ -131,9 +140,15 @@ std::vector<double> QuasiStaticRun::whole(const std::vector<double>& v) const {
   return x.to_replicated();
 }
 
+std::vector<double> QuasiStaticRun::whole_of_owned(const std::vector<double>& v) const {
+  if (!halo_) return v;
+  la::Vector x = system_->make_vector();
+  x.assign_owned(owned_dofs_, v);
+  return x.to_replicated();
+}
+
 double QuasiStaticRun::add_over_dofs(double init, const std::function<double(std::size_t)>& term) const {
-  return la::add_over_entries(u_.distribution(), disc_->dim(),
-                              static_cast<std::size_t>(disc_->dofmap.num_dofs()), init, term);
+  return owned_dofs_.sum(init, term);
 }
 
 void QuasiStaticRun::apply_load(int i) {
@@ -183,12 +198,14 @@ void QuasiStaticRun::solve() {
     system_->apply_K(u_, internal_);
     state_.u = gather(u_);
     fint_ = owned(internal_);
-    work = add_over_dofs(
-        work, [&](std::size_t k) { return 0.5 * (fint_[k] + fint_prev_[k]) * (state_.u[k] - u_prev_[k]); });
+    work = add_over_dofs(work, [&](std::size_t j) {
+      const auto k = static_cast<std::size_t>(owned_dofs_.dof(j));
+      return 0.5 * (fint_[j] + fint_prev_[j]) * (state_.u[k] - u_prev_[j]);
+    });
     return;
   }
   // A re-equilibration at fixed load.
-  const std::vector<double> u_before = std::move(state_.u);
+  const std::vector<double> u_before = owned_dofs_.of(state_.u);
   if (fracture_ && bonds_failed_in_pass_ && !fracture_->proposed().empty()) {
     double max_stretch = 0.0;
     for (const auto& b : fracture_->proposed()) max_stretch = std::max(max_stretch, b.stretch);
@@ -198,7 +215,10 @@ void QuasiStaticRun::solve() {
   }
   state_.u = gather(u_);
   const std::vector<double>& F = system_->applied_force();
-  work = add_over_dofs(work, [&](std::size_t k) { return lambda * F[k] * (state_.u[k] - u_before[k]); });
+  work = add_over_dofs(work, [&](std::size_t j) {
+    const auto k = static_cast<std::size_t>(owned_dofs_.dof(j));
+    return lambda * F[k] * (state_.u[k] - u_before[j]);
+  });
 }
 
 void QuasiStaticRun::warn_unused_options() {
@@ -317,16 +337,18 @@ void QuasiStaticRun::record(bool force_vtu) {
     balls_written_ = adaptivity_->balls().size();
   }
   std::vector<double> reaction(fint_);
-  for (std::size_t k = 0; k < reaction.size(); ++k) reaction[k] -= lambda * F[k];
-  const double energy = add_over_dofs(0.0, [&](std::size_t k) { return 0.5 * uv[k] * fint_[k]; });
-  u_prev_ = uv;
+  for (std::size_t j = 0; j < reaction.size(); ++j)
+    reaction[j] -= lambda * F[static_cast<std::size_t>(owned_dofs_.dof(j))];
+  const double energy = add_over_dofs(
+      0.0, [&](std::size_t j) { return 0.5 * uv[static_cast<std::size_t>(owned_dofs_.dof(j))] * fint_[j]; });
+  u_prev_ = owned_dofs_.of(uv);
   fint_prev_ = fint_;
   state_.energy.strain_energy = energy;
 
   const double work = state_.energy.external_work;
   rec_.increment = state_.increment;
   rec_.load_factor = lambda;
-  rec_.reactions = sum_reactions(setup_.sets, reaction, dim, u_.distribution());
+  rec_.reactions = sum_reactions(setup_.sets, reaction, dim, owned_dofs_, u_.distribution() != nullptr);
   rec_.strain_energy = energy;
   rec_.external_work = work;
   rec_.iterations = summary_.last_solve.iterations;

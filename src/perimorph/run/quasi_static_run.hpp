@@ -12,6 +12,7 @@
 #include "perimorph/evolution/local_damage.hpp"
 #include "perimorph/evolution/run_state.hpp"
 #include "perimorph/la/node_gather.hpp"
+#include "perimorph/la/owned_dofs.hpp"
 #include "perimorph/run/run_output.hpp"
 #include "perimorph/run/static_run.hpp"
 #include "perimorph/system/constrained_system.hpp"
@@ -102,19 +103,22 @@ class QuasiStaticRun {
   /// solves: Interrupted, naming the increment and what is written.
   void stop_if_asked();
   [[noreturn]] void stop_unsupported(const std::exception& e);
-  /// Sets halo_ for the current system (after it is built or restored).
+  /// Sets halo_ and owned_dofs_ for the current system (after it is built
+  /// or restored).
   void choose_gather();
   /// v's entries at the nodes this process reads (halo_; collective), or
   /// on one process v.
   std::vector<double> gather(const la::Vector& v);
-  /// v's entries this process owns (NaN elsewhere), or on one process v.
+  /// v's entries at owned_dofs_ (in its order), or on one process v.
   std::vector<double> owned(const la::Vector& v) const;
-  /// The whole vector of `v`, which is exact at the dofs this process owns
-  /// (collective): what a checkpoint and the summary hold.
+  /// The whole vector of `v` (whole-length), which is exact at the dofs this
+  /// process owns (collective): what a checkpoint and the summary hold.
   std::vector<double> whole(const std::vector<double>& v) const;
-  /// init + Σ term(k) over every dof k: on one process in dof order; spread
-  /// over processes, each adds the dofs it owns and the sums are added in
-  /// rank order (collective).
+  /// The whole vector of `v`, this process's entries at owned_dofs_ (collective).
+  std::vector<double> whole_of_owned(const std::vector<double>& v) const;
+  /// init + Σ term(j) over owned_dofs_' entries j (every dof on one process,
+  /// in dof order; spread over processes, each process's sum added in rank
+  /// order; collective).
   double add_over_dofs(double init, const std::function<double(std::size_t)>& term) const;
   /// ½ uᵀ K u of the current u (K u left in internal_; collective).
   double strain_energy();
@@ -151,11 +155,14 @@ class QuasiStaticRun {
   evolution::RunState state_;
   la::Vector u_, internal_;  ///< the solution (initial guess of the next solve), K u
   /// Spread over processes (empty on one): u is brought to each process at
-  /// setup::nodes_read only, NaN elsewhere in state_.u and u_prev_; K u is
-  /// read at the owned dofs only, NaN elsewhere in fint_ and fint_prev_.
+  /// setup::nodes_read only, NaN elsewhere in state_.u.
   std::optional<la::NodeGather> halo_;
-  std::vector<double> u_prev_, fint_prev_, fint_;  ///< of the last recorded state, and fint of this one
-  IncrementRecord rec_;                            ///< of the increment in progress
+  /// The dofs this process owns (every dof on one process): K u and the last
+  /// recorded state are read there only, and held there only (issue 17).
+  la::OwnedDofs owned_dofs_;
+  /// u and K u of the last recorded state, and K u of this one, at owned_dofs_.
+  std::vector<double> u_prev_, fint_prev_, fint_;
+  IncrementRecord rec_;  ///< of the increment in progress
   std::size_t failed_before_ = 0;
   double dissipated_before_ = 0.0;
   bool options_checked_ = false;

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace perimorph::system {
 
@@ -101,12 +102,11 @@ la::Vector ConstrainedSystem::make_vector() const {
 void ConstrainedSystem::constrain_rhs(std::span<const double> F) {
   const Index n = model_.dofmap.num_dofs();
   la::Vector g = make_vector();
+  PERIMORPH_ASSERT(bc_.dofs.size() == bc_.values.size() && std::is_sorted(bc_.dofs.begin(), bc_.dofs.end()) &&
+                       std::adjacent_find(bc_.dofs.begin(), bc_.dofs.end()) == bc_.dofs.end(),
+                   "the prescribed dofs must be sorted and unique");
   std::vector<double> gv(static_cast<std::size_t>(n), 0.0);
-  prescribed_.assign(static_cast<std::size_t>(n), std::nan(""));
-  for (std::size_t k = 0; k < bc_.dofs.size(); ++k) {
-    gv[static_cast<std::size_t>(bc_.dofs[k])] = bc_.values[k];
-    prescribed_[static_cast<std::size_t>(bc_.dofs[k])] = bc_.values[k];
-  }
+  for (std::size_t k = 0; k < bc_.dofs.size(); ++k) gv[static_cast<std::size_t>(bc_.dofs[k])] = bc_.values[k];
   g.assign_replicated(gv);
   if (free_) {
     // b = F − K g on the free rows, g on the prescribed ones (as eliminate_dirichlet).
@@ -120,6 +120,12 @@ void ConstrainedSystem::constrain_rhs(std::span<const double> F) {
   rhs_unit_.assign_replicated(F);
   A_.eliminate_dirichlet(bc_.dofs, g, rhs_unit_);
   A_.set_spd();
+}
+
+double ConstrainedSystem::prescribed_value(Index dof) const {
+  const auto at = std::lower_bound(bc_.dofs.begin(), bc_.dofs.end(), dof);
+  if (at == bc_.dofs.end() || *at != dof) return std::numeric_limits<double>::quiet_NaN();
+  return bc_.values[static_cast<std::size_t>(at - bc_.dofs.begin())];
 }
 
 void ConstrainedSystem::apply_K(const la::Vector& x, la::Vector& y) const {
@@ -151,15 +157,18 @@ void ConstrainedSystem::downdate(std::span<const Index> dofs, std::span<const do
   for (std::size_t i = 0; i < m * m; ++i) negative_[i] = -block[i];
   K_.add(dofs, dofs, negative_);
   free_dofs_.assign(dofs.begin(), dofs.end());
-  for (std::size_t i = 0; i < m; ++i)
-    if (prescribed(dofs[i])) free_dofs_[i] = -1;  // skipped by add
+  given_.resize(m);
+  for (std::size_t i = 0; i < m; ++i) {
+    given_[i] = prescribed_value(dofs[i]);
+    if (!std::isnan(given_[i])) free_dofs_[i] = -1;  // skipped by add
+  }
   A_.add(free_dofs_, free_dofs_, negative_);
   for (std::size_t i = 0; i < m; ++i) {
     if (free_dofs_[i] < 0) continue;
     touched_.push_back(dofs[i]);
     double sum = 0.0;
     for (std::size_t j = 0; j < m; ++j) {
-      const double g = prescribed_[static_cast<std::size_t>(dofs[j])];
+      const double g = given_[j];
       if (!std::isnan(g)) sum += block[i * m + j] * g;
     }
     if (sum != 0.0) {
@@ -300,10 +309,10 @@ la::SolveReport ConstrainedSystem::solve(double lambda, la::Vector& u) {
     // A's prescribed rows are the identity: started at their values, the
     // solution keeps them to round-off (started elsewhere, a residual relative
     // to ||b|| would let them err by the stiffness' scale).
-    std::vector<double> start = u.to_replicated();
-    for (std::size_t k = 0; k < start.size(); ++k)
-      if (free_->fixed[k]) start[k] = lambda * prescribed_[k];
-    u.assign_replicated(start);
+    // Each process sets the rows it owns (no gather of u).
+    std::vector<double> start(bc_.values.size());
+    for (std::size_t k = 0; k < start.size(); ++k) start[k] = lambda * bc_.values[k];
+    u.set_at(bc_.dofs, start);
   }
   return solver_->solve(rhs_, u);
 }

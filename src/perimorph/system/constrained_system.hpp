@@ -17,6 +17,7 @@
 #include "perimorph/setup/discretization.hpp"
 #include "perimorph/system/matrix_free_stiffness.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <span>
@@ -124,7 +125,9 @@ class ConstrainedSystem {
   /// reference over, system/remodel.hpp).
   void set_reference_diagonal(std::vector<double> diagonal);
   /// True if the dof is prescribed.
-  bool prescribed(Index dof) const { return !std::isnan(prescribed_[static_cast<std::size_t>(dof)]); }
+  bool prescribed(Index dof) const { return std::binary_search(bc_.dofs.begin(), bc_.dofs.end(), dof); }
+  /// The dof's prescribed value at load factor 1, NaN if it is free.
+  double prescribed_value(Index dof) const;
 
   la::Matrix& K() { return assembled(K_); }
   const la::Matrix& K() const { return assembled(K_); }
@@ -149,17 +152,17 @@ class ConstrainedSystem {
   const setup::Discretization& model_;
   std::unique_ptr<MatrixFree> free_;  ///< matrix-free only
   la::Matrix K_, A_;
-  setup::DirichletData bc_;
+  setup::DirichletData bc_;  ///< the prescribed dofs (sorted, unique) and values at load factor 1
   std::vector<double> applied_force_;
   la::Vector rhs_unit_, rhs_;
   std::unique_ptr<la::LinearSolver> solver_;
-  std::vector<double> prescribed_;        ///< value at load factor 1; NaN on free dofs
   std::vector<double> initial_diagonal_;  ///< of A, before any downdate
   // Collected by downdate, applied by finish_downdate.
   std::vector<Index> touched_, rhs_at_, free_dofs_;
   std::vector<Index> last_downdated_;
   std::size_t downdates_ = 0;
   std::vector<double> rhs_add_, negative_;
+  std::vector<double> given_;  ///< downdate: the block's prescribed values (NaN: free)
 };
 
 }  // namespace perimorph::system
