@@ -11,36 +11,8 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
-#include <limits>
 
 namespace perimorph::run {
-
-namespace {
-
-/// The reaction of each set: Σ over its nodes of r (r at `owned`'s dofs:
-/// every node on one process; spread over processes, the nodes each owns,
-/// the sums added in rank order: collective).
-std::vector<Vec3> sum_reactions(const std::vector<setup::ReactionSet>& sets, std::span<const double> r,
-                                int dim, const la::OwnedDofs& owned, bool spread) {
-  std::vector<Vec3> out;
-  for (const auto& s : sets) {
-    Vec3 f = Vec3::Zero();
-    for (Index n : s.dof_nodes) {
-      const std::ptrdiff_t at = owned.position(n * dim);
-      if (at < 0) continue;
-      for (int d = 0; d < dim; ++d) f[d] += r[static_cast<std::size_t>(at + d)];
-    }
-    out.push_back(f);
-  }
-  if (!spread) return out;
-  std::vector<double> flat;
-  for (const Vec3& f : out) flat.insert(flat.end(), f.data(), f.data() + 3);
-  flat = la::sum_over_processes(std::move(flat));
-  for (std::size_t k = 0; k < out.size(); ++k) out[k] = Vec3(flat[3 * k], flat[3 * k + 1], flat[3 * k + 2]);
-  return out;
-}
-
-}  // namespace
 
 QuasiStaticRun::QuasiStaticRun(const setup::Discretization& disc, const RunOptions& options)
     : disc_(&disc),
@@ -109,47 +81,6 @@ void QuasiStaticRun::find_components() {
 }
 
 QuasiStaticRun::~QuasiStaticRun() = default;
-
-void QuasiStaticRun::choose_gather() {
-  halo_.reset();
-  const auto* d = u_.distribution();
-  owned_dofs_ = la::OwnedDofs(d, disc_->dim(), disc_->dofmap.num_dofs());
-  if (!d) return;
-  std::vector<Index> nodes = setup::nodes_read(*disc_);
-  std::vector<char> read(static_cast<std::size_t>(d->num_nodes()), 0);
-  for (Index n : nodes) read[static_cast<std::size_t>(n)] = 1;
-  for (Index n = 0; n < d->num_nodes(); ++n)
-    PERIMORPH_ASSERT(!d->owns(n) || read[static_cast<std::size_t>(n)],
-                     "a process must read the dofs it owns");
-  halo_.emplace(u_.shared_distribution(), disc_->dim(), std::move(nodes));
-}
-
-std::vector<double> QuasiStaticRun::gather(const la::Vector& v) {
-  if (!halo_) return v.to_std();
-  return halo_->gathered(v, std::numeric_limits<double>::quiet_NaN());
-}
-
-std::vector<double> QuasiStaticRun::owned(const la::Vector& v) const {
-  return v.at_owned(owned_dofs_);
-}
-
-std::vector<double> QuasiStaticRun::whole(const std::vector<double>& v) const {
-  if (!halo_) return v;
-  la::Vector x = system_->make_vector();
-  x.assign_replicated(v);
-  return x.to_replicated();
-}
-
-std::vector<double> QuasiStaticRun::whole_of_owned(const std::vector<double>& v) const {
-  if (!halo_) return v;
-  la::Vector x = system_->make_vector();
-  x.assign_owned(owned_dofs_, v);
-  return x.to_replicated();
-}
-
-double QuasiStaticRun::add_over_dofs(double init, const std::function<double(std::size_t)>& term) const {
-  return owned_dofs_.sum(init, term);
-}
 
 void QuasiStaticRun::apply_load(int i) {
   state_.increment = i + 1;
@@ -284,7 +215,6 @@ bool QuasiStaticRun::evolve() {
 
 void QuasiStaticRun::record(bool force_vtu) {
   const double lambda = state_.load_factor;
-  const int dim = disc_->dim();
   const std::vector<double>& uv = state_.u;
   const std::vector<double>& F = system_->applied_force();
   if ((fracture_ || damage_) && rec_.break_iterations > 0) {
@@ -348,7 +278,7 @@ void QuasiStaticRun::record(bool force_vtu) {
   const double work = state_.energy.external_work;
   rec_.increment = state_.increment;
   rec_.load_factor = lambda;
-  rec_.reactions = sum_reactions(setup_.sets, reaction, dim, owned_dofs_, u_.distribution() != nullptr);
+  rec_.reactions = reactions(reaction);
   rec_.strain_energy = energy;
   rec_.external_work = work;
   rec_.iterations = summary_.last_solve.iterations;

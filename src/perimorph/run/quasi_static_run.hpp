@@ -21,6 +21,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -120,6 +121,10 @@ class QuasiStaticRun {
   /// in dof order; spread over processes, each process's sum added in rank
   /// order; collective).
   double add_over_dofs(double init, const std::function<double(std::size_t)>& term) const;
+  /// The reaction of each set of setup_.sets: Σ over its nodes of r (r at
+  /// owned_dofs_; spread over processes, each process's sums added in rank
+  /// order: collective).
+  std::vector<Vec3> reactions(std::span<const double> r) const;
   /// ½ uᵀ K u of the current u (K u left in internal_; collective).
   double strain_energy();
   /// Finds the bond-failure, adaptivity and damage components among setup_'s.
