@@ -159,7 +159,7 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
   const auto model = perimorph::setup::build_discretization(
       config, [&](const std::string& phase) { progress.phase(phase); },
       {perimorph::la::world_size(), perimorph::la::world_rank(),
-       [](std::vector<char> flags) { return perimorph::la::max_over_processes(std::move(flags)); }});
+       [](std::vector<char> flags) { return perimorph::la::union_over_processes(std::move(flags)); }});
   const auto summary =
       perimorph::run::run_static(model, {out_dir, quiet, &progress, restart, checkpoint_every});
   progress.finish();

@@ -20,6 +20,7 @@
 // Motions spread over several cells that are not cut free are not found.
 
 #include "perimorph/la/matrix.hpp"
+#include "perimorph/la/owned_dofs.hpp"
 #include "perimorph/setup/discretization.hpp"
 
 #include <span>
@@ -39,9 +40,11 @@ struct CellMechanisms {
 /// about to be held; a pin chosen for one cell is left out of the next).
 /// `force`: the applied forces at load factor 1 (empty: none). Throws Error
 /// naming the cell when the forces do work on one of its free modes. With A
-/// spread over processes: collective, the same arguments and result on each.
+/// spread over processes: collective, the same arguments and result on each;
+/// the two vectors are read at the cells' dofs only, a batch of cells at a
+/// time (la::DofValuesAt: from their owners).
 CellMechanisms find_cell_mechanisms(const setup::Discretization& model, const la::Matrix& A,
-                                    std::span<const double> reference_diagonal, std::span<const Index> cells,
-                                    std::span<const Index> held, std::span<const double> force);
+                                    const la::DofValuesAt& reference_diagonal, std::span<const Index> cells,
+                                    std::span<const Index> held, const la::DofValuesAt& force);
 
 }  // namespace perimorph::evolution

@@ -3,13 +3,12 @@
 #include "perimorph/assembly/inserter.hpp"
 #include "perimorph/assembly/local_assembly.hpp"
 #include "perimorph/assembly/sparsity.hpp"
+#include "perimorph/core/error.hpp"
 #include "perimorph/fem/damage_law.hpp"
 #include "perimorph/la/nonlinear_solver.hpp"
 #include "perimorph/setup/discretization.hpp"
 
 #include <Eigen/Core>
-
-#include <limits>
 
 namespace perimorph::evolution {
 
@@ -90,7 +89,6 @@ DamageNewtonReport solve_damage_newton(const setup::Discretization& disc,
                                        const system::ConstrainedSystem& system,
                                        std::span<const double> history, double lambda,
                                        std::vector<double>& u) {
-  const Index n = disc.dofmap.num_dofs();
   const assembly::LocalSpace space = disc.local_space();
   // Laid out as the system (spread over the processes of a distributed run:
   // each process keeps its own rows of what every process assembles whole).
@@ -108,10 +106,10 @@ DamageNewtonReport solve_damage_newton(const setup::Discretization& disc,
       for (Index node : disc.dofmap.cell_nodes(c))
         if (distribution->owns(node)) mine[static_cast<std::size_t>(c)] = 1;
   }
-  // Each process keeps its own entries of r (NonlinearSolver): A u, b and
-  // K_Δ u are read where it owns them, u where its cells need it.
-  constexpr double elsewhere = std::numeric_limits<double>::quiet_NaN();
-  const std::vector<double> b = system.rhs_unit().owned_entries(elsewhere);  // fixed during the solve
+  // Each process computes its own entries of r (NonlinearSolver): A u, b and
+  // K_Δ u at the dofs it owns, u where its cells need it.
+  const la::OwnedDofs& owned = system.owned_dofs();
+  const std::vector<double> b = system.rhs_unit().at_owned(owned);  // fixed during the solve
   auto residual = [&](std::span<const double> x, std::span<double> r) {
     uv.assign_replicated(x);
     system.A().mult(uv, Au);
@@ -121,11 +119,9 @@ DamageNewtonReport solve_damage_newton(const setup::Discretization& disc,
                                   [&](Index c) { return cells[static_cast<std::size_t>(c)] != 0; });
     local.finalize();
     local.mult(uv, fcorr);
-    const auto a = Au.owned_entries(elsewhere), f = fcorr.owned_entries(elsewhere);
-    for (Index i = 0; i < n; ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      r[k] = a[k] - lambda * b[k] - (system.prescribed(i) ? 0.0 : f[k]);
-    }
+    const auto a = Au.at_owned(owned), f = fcorr.at_owned(owned);
+    for (std::size_t j = 0; j < owned.size(); ++j)
+      r[j] = a[j] - lambda * b[j] - (system.prescribed(owned.dof(j)) ? 0.0 : f[j]);
   };
   auto jacobian = [&](std::span<const double> x, la::Matrix& Jm) {
     Jm.copy_values_from(system.A());
@@ -140,6 +136,7 @@ DamageNewtonReport solve_damage_newton(const setup::Discretization& disc,
   // -ksp_reuse_preconditioner, the GAMG of an earlier A(h): no set-up here).
   la::NonlinearSolver snes(J, residual, jacobian, 1e-6, 1e-300, 12, "damage_", system.solver());
   snes.read_only(setup::nodes_read(disc), disc.dim());
+  PERIMORPH_ASSERT(snes.owned_dofs().size() == owned.size(), "the Newton solver's rows are the system's");
   la::Vector x = system.make_vector();
   x.assign_replicated(u);
   const la::NonlinearReport rep = snes.solve(x);

@@ -117,7 +117,7 @@ std::vector<Index> stiffness_links_over_processes(const setup::Discretization& d
 }
 
 FloatingParts find_floating_parts(const setup::Discretization& model, std::span<const Index> links,
-                                  std::span<const Index> held, std::span<const double> force) {
+                                  std::span<const Index> held, const la::DofValuesAt& force) {
   const auto& dm = model.dofmap;
   const int dim = model.dim();
   const int nr = rigid_modes(dim);
@@ -145,32 +145,62 @@ FloatingParts find_floating_parts(const setup::Discretization& model, std::span<
   std::vector<char> is_held(static_cast<std::size_t>(dm.num_dofs()), 0);
   for (Index d : held) is_held[static_cast<std::size_t>(d)] = 1;
 
-  FloatingParts out;
-  for (const auto& nodes : members) {
+  // A part's nodes relative to its centre, scaled by its size.
+  struct Frame {
+    Vec3 centre;
+    double size;
+  };
+  auto frame_of = [&](const std::vector<Index>& nodes) {
     Vec3 centre = Vec3::Zero();
     for (Index a : nodes) centre += dm.node_coordinate(a);
     centre /= static_cast<double>(nodes.size());
     double size = 0.0;
     for (Index a : nodes) size = std::max(size, (dm.node_coordinate(a) - centre).norm());
-    if (size == 0.0) size = 1.0;
-    auto rel = [&](Index a) -> Vec3 { return (dm.node_coordinate(a) - centre) / size; };
+    return Frame{centre, size == 0.0 ? 1.0 : size};
+  };
+  auto held_span = [&](const std::vector<Index>& nodes, const Frame& fr) {
     Span span;
     for (Index a : nodes)
       for (int d = 0; d < dim; ++d)
-        if (is_held[static_cast<std::size_t>(a * dim + d)]) span.add(mode_row(dim, rel(a), d), 1e-8);
-    if (static_cast<int>(span.basis.size()) == nr) continue;
+        if (is_held[static_cast<std::size_t>(a * dim + d)])
+          span.add(mode_row(dim, (dm.node_coordinate(a) - fr.centre) / fr.size, d), 1e-8);
+    return span;
+  };
+  // The parts the held dofs do not fix (the parts share no node, so pinning
+  // one changes no other's span), and the force at their dofs, read once.
+  std::vector<std::size_t> floating;
+  std::vector<Index> floating_dofs;
+  for (std::size_t p = 0; p < members.size(); ++p)
+    if (static_cast<int>(held_span(members[p], frame_of(members[p])).basis.size()) < nr) {
+      floating.push_back(p);
+      for (Index a : members[p])
+        for (int d = 0; d < dim; ++d) floating_dofs.push_back(a * dim + d);
+    }
+  std::sort(floating_dofs.begin(), floating_dofs.end());
+  const std::vector<double> floating_force = force ? force(floating_dofs) : std::vector<double>{};
+  auto force_at = [&](Index dof) {
+    return floating_force[static_cast<std::size_t>(
+        std::lower_bound(floating_dofs.begin(), floating_dofs.end(), dof) - floating_dofs.begin())];
+  };
+
+  FloatingParts out;
+  for (std::size_t p : floating) {
+    const std::vector<Index>& nodes = members[p];
+    const Frame fr = frame_of(nodes);
+    auto rel = [&](Index a) -> Vec3 { return (dm.node_coordinate(a) - fr.centre) / fr.size; };
+    Span span = held_span(nodes, fr);
     ++out.parts;
     // The free modes: the complement of the held rows' span.
     Span all = span;
     std::vector<Eigen::VectorXd> free_modes;
     for (int k = 0; k < nr; ++k)
       if (all.add(Eigen::VectorXd::Unit(nr, k), 1e-8)) free_modes.push_back(all.basis.back());
-    if (!force.empty()) {
+    if (force) {
       for (const auto& m : free_modes) {
         double work = 0.0, scale = 0.0;
         for (Index a : nodes)
           for (int d = 0; d < dim; ++d) {
-            const double F = force[static_cast<std::size_t>(a * dim + d)];
+            const double F = force_at(a * dim + d);
             const Eigen::VectorXd row = mode_row(dim, rel(a), d);
             work += F * row.dot(m);
             scale += std::abs(F) * row.norm();

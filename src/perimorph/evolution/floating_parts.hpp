@@ -10,6 +10,7 @@
 // free mode has no quasi-static equilibrium; that is an error.
 
 #include "perimorph/assembly/nonlocal_assembly.hpp"
+#include "perimorph/la/owned_dofs.hpp"
 #include "perimorph/setup/discretization.hpp"
 
 #include <span>
@@ -46,10 +47,12 @@ std::vector<Index> stiffness_links_over_processes(const setup::Discretization& m
 /// reached by no link have no stiffness at all and are left out: BondFailure
 /// holds those one by one) and their free rigid-body modes, given the dofs
 /// already held (`held`: prescribed or pinned before, sorted). `force`: the
-/// applied forces at load factor 1 (empty: none). Throws Error naming the part
-/// when the forces do work on one of its free modes. The same parts, pins and
-/// figures for any split of the links, in any order.
+/// applied forces at load factor 1 (empty: none), read at the floating parts'
+/// dofs only, once (collective where they are spread: every process passes the
+/// same links and held dofs). Throws Error naming the part when the forces do
+/// work on one of its free modes. The same parts, pins and figures for any
+/// split of the links, in any order.
 FloatingParts find_floating_parts(const setup::Discretization& model, std::span<const Index> links,
-                                  std::span<const Index> held, std::span<const double> force);
+                                  std::span<const Index> held, const la::DofValuesAt& force);
 
 }  // namespace perimorph::evolution

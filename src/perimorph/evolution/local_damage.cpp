@@ -42,10 +42,11 @@ double potential(const system::ConstrainedSystem& system, std::span<const double
   system.K().mult(x, Kx);
   const la::OwnedDofs owned(x.distribution(), dim, static_cast<Index>(u.size()));
   const auto k = Kx.at_owned(owned);
-  const auto& F = system.applied_force();
+  const auto& F = system.applied_force();  // at the owned dofs
+  PERIMORPH_ASSERT(F.size() == owned.size(), "the system's owned dofs are the vector's");
   return owned.sum(0.0, [&](std::size_t j) {
     const auto i = static_cast<std::size_t>(owned.dof(j));
-    return 0.5 * u[i] * k[j] - lambda * F[i] * u[i];
+    return 0.5 * u[i] * k[j] - lambda * F[j] * u[i];
   });
 }
 

@@ -12,6 +12,19 @@
 
 namespace perimorph::evolution {
 
+namespace {
+
+/// The system's applied force and reference diagonal, read at given dofs
+/// from the processes that own them.
+la::DofValuesAt applied_force_of(const system::ConstrainedSystem& system) {
+  return [&system](std::span<const Index> dofs) { return system.applied_force_at(dofs); };
+}
+la::DofValuesAt reference_diagonal_of(const system::ConstrainedSystem& system) {
+  return [&system](std::span<const Index> dofs) { return system.reference_diagonal_at(dofs); };
+}
+
+}  // namespace
+
 Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSystem& system) {
   detached_.clear();
   pins_.clear();
@@ -24,21 +37,22 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
   downdates_seen_ = system.downdate_count();
   if (first == seen_ && !downdated) return {};
   const int dim = disc_->dim();
-  const std::vector<double>& applied_force = system.applied_force();
+  const la::DofValuesAt force = applied_force_of(system), reference = reference_diagonal_of(system);
   // A free dof whose every bond has failed (or whose cells have all lost
   // their stiffness to damage, d = 1) has a zero row: the matrix turns
   // singular. Such a dof is coupled to nothing, so holding it at zero by a
   // spring of its initial stiffness changes no other dof.
   detached_ = system.without_stiffness(system.last_downdated());
-  for (Index d : detached_) {
-    const double force = applied_force[static_cast<std::size_t>(d)];
-    if (force != 0.0) {
+  const std::vector<double> detached_force = system.applied_force_at(detached_);
+  for (std::size_t k = 0; k < detached_.size(); ++k) {
+    const Index d = detached_[k];
+    if (const double f = detached_force[k]; f != 0.0) {
       const Vec3 x = disc_->dofmap.node_coordinate(d / dim);
       throw Error(
           fmt::format("bond failures or damage have left the node at ({:g}, {:g}, {:g}) with no stiffness in "
                       "direction {} while an applied force {:g} acts on it: there is no quasi-static "
                       "equilibrium",
-                      x.x(), x.y(), x.z(), "xyz"[d % dim], force));
+                      x.x(), x.y(), x.z(), "xyz"[d % dim], f));
     }
   }
   // A cell pair that lost its last intact bond may have cut a part free
@@ -65,7 +79,7 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
     held.insert(held.end(), prescribed.begin(), prescribed.end());
     std::sort(held.begin(), held.end());
     FloatingParts parts =
-        find_floating_parts(*disc_, stiffness_links_over_processes(*disc_, space), held, applied_force);
+        find_floating_parts(*disc_, stiffness_links_over_processes(*disc_, space), held, force);
     pins_ = std::move(parts.pins);
     parts_ = parts.parts;
   }
@@ -82,8 +96,7 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
   held.insert(held.end(), detached_.begin(), detached_.end());
   held.insert(held.end(), pins_.begin(), pins_.end());
   std::sort(held.begin(), held.end());
-  CellMechanisms mechanisms =
-      find_cell_mechanisms(*disc_, system.A(), system.reference_diagonal(), cells, held, applied_force);
+  CellMechanisms mechanisms = find_cell_mechanisms(*disc_, system.A(), reference, cells, held, force);
   cell_pins_ = std::move(mechanisms.pins);
   mechanisms_ = mechanisms.cells;
   return {detached_.size() + pins_.size() + cell_pins_.size()};
@@ -112,10 +125,8 @@ void PartSupport::rebind(const setup::Discretization& disc, RunState& state,
   state.held_dofs.clear();
   downdates_seen_ = system.downdate_count();
   if (state.failed_in_order.empty() && state.history.empty()) return;
-  std::vector<Index> free;
-  for (Index d = 0; d < disc.dofmap.num_dofs(); ++d)
-    if (!system.prescribed(d)) free.push_back(d);
-  const std::vector<Index> detached = system.without_stiffness(free);
+  const la::DofValuesAt force = applied_force_of(system), reference = reference_diagonal_of(system);
+  const std::vector<Index> detached = system.free_dofs_without_stiffness();
   system.hold(detached, true);
   if (state.failed_in_order.empty()) {
     state.held_dofs = detached;
@@ -125,9 +136,8 @@ void PartSupport::rebind(const setup::Discretization& disc, RunState& state,
   const auto& prescribed = system.bc().dofs;
   held.insert(held.end(), prescribed.begin(), prescribed.end());
   std::sort(held.begin(), held.end());
-  const FloatingParts parts =
-      find_floating_parts(disc, stiffness_links_over_processes(disc, disc.nonlocal_space(&state.failed)),
-                          held, system.applied_force());
+  const FloatingParts parts = find_floating_parts(
+      disc, stiffness_links_over_processes(disc, disc.nonlocal_space(&state.failed)), held, force);
   system.hold(parts.pins, false);
   std::vector<Index> cells;
   for (const auto& id : state.failed_in_order) {
@@ -138,8 +148,7 @@ void PartSupport::rebind(const setup::Discretization& disc, RunState& state,
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
   held.insert(held.end(), parts.pins.begin(), parts.pins.end());
   std::sort(held.begin(), held.end());
-  const CellMechanisms mechanisms = find_cell_mechanisms(disc, system.A(), system.reference_diagonal(), cells,
-                                                         held, system.applied_force());
+  const CellMechanisms mechanisms = find_cell_mechanisms(disc, system.A(), reference, cells, held, force);
   system.hold(mechanisms.pins, false);
   state.held_dofs = detached;
   state.held_dofs.insert(state.held_dofs.end(), parts.pins.begin(), parts.pins.end());

@@ -208,19 +208,29 @@ void Matrix::eliminate_dirichlet(std::span<const Index> rows, const Vector& x, V
                               rhs.handle()));
 }
 
-std::vector<double> Matrix::diagonal() const {
+Vector Matrix::diagonal() const {
   release_view();
-  if (distribution_) {
-    PetscInt bs = 1;
-    PM_PETSC(MatGetBlockSize(m_, &bs));
-    Vector d(distribution_, static_cast<int>(bs));
-    PM_PETSC(MatGetDiagonal(m_, d.handle()));
-    return d.to_replicated();
-  }
-  const Index n = rows();
-  Vector d(n, 1);
+  PetscInt bs = 1;
+  PM_PETSC(MatGetBlockSize(m_, &bs));
+  Vector d = distribution_ ? Vector(distribution_, static_cast<int>(bs)) : Vector(rows(), 1);
   PM_PETSC(MatGetDiagonal(m_, d.handle()));
-  return d.to_std();
+  return d;
+}
+
+std::vector<double> Matrix::owned_diagonal_at(std::span<const Index> rows) const {
+  release_view();
+  PetscInt bs = 1;
+  PM_PETSC(MatGetBlockSize(m_, &bs));
+  std::vector<double> out(rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    PetscInt row = rows[k];
+    if (distribution_) {
+      PERIMORPH_ASSERT(distribution_->owns(row / bs), "owned_diagonal_at: a row another process owns");
+      row = distribution_->to_distributed[static_cast<std::size_t>(row / bs)] * bs + row % bs;
+    }
+    PM_PETSC(MatGetValues(m_, 1, &row, 1, &row, &out[k]));
+  }
+  return out;
 }
 
 std::vector<double> Matrix::diagonal_at(std::span<const Index> rows) const {

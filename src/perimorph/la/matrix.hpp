@@ -67,9 +67,12 @@ class Matrix final : public assembly::MatrixInserter {
   /// rhs[rows] = diagonal · x[rows]. The matrix stays symmetric.
   void eliminate_dirichlet(std::span<const Index> rows, const Vector& x, Vector& rhs, double diagonal = 1.0);
 
-  /// The diagonal (MatGetDiagonal); distributed, the whole of it in the
-  /// assembly's numbering on every process (collective).
-  std::vector<double> diagonal() const;
+  /// The diagonal (MatGetDiagonal), a vector laid out as the rows (spread
+  /// over the processes as they are: each holds its owned rows', nothing sent).
+  Vector diagonal() const;
+  /// The diagonal entries at `rows`, rows this process owns (any row on one
+  /// process; MatGetValues, a finalized matrix). Nothing is sent.
+  std::vector<double> owned_diagonal_at(std::span<const Index> rows) const;
   /// The diagonal entries at the given rows (MatGetValues; a finalized
   /// matrix). Distributed: collective, the same rows on every process, the
   /// values on every process.

@@ -77,6 +77,9 @@ NonlinearSolver::NonlinearSolver(Matrix& J, Residual residual, Jacobian jacobian
       r_(J.make_vector()),
       u_whole_(J.make_vector()),
       r_whole_(J.make_vector()) {
+  PetscInt bs = 1;
+  PM_PETSC(MatGetBlockSize(J_.handle(), &bs));
+  owned_ = OwnedDofs(J_.distribution().get(), static_cast<int>(bs), J_.rows());
   PM_PETSC(SNESCreate(PETSC_COMM_WORLD, &snes_));
   PM_PETSC(SNESSetOptionsPrefix(snes_, options_prefix.c_str()));
   PM_PETSC(SNESSetType(snes_, SNESNEWTONLS));
@@ -118,9 +121,9 @@ void NonlinearSolver::evaluate_residual(PetscVecHandle u, PetscVecHandle r) {
   ++residual_evaluations;
   if (J_.distribution()) {
     const std::vector<double> x = gathered(u);
-    std::vector<double> f(x.size());
+    std::vector<double> f(owned_.size());
     residual_(x, f);
-    r_whole_.assign_replicated(f);
+    r_whole_.assign_owned(owned_, f);
     PM_PETSC(VecCopy(r_whole_.handle(), r));
     return;
   }

@@ -13,6 +13,7 @@
 #include "perimorph/la/linear_solver.hpp"
 #include "perimorph/la/matrix.hpp"
 #include "perimorph/la/node_gather.hpp"
+#include "perimorph/la/owned_dofs.hpp"
 #include "perimorph/la/petsc_fwd.hpp"
 #include "perimorph/la/vector.hpp"
 
@@ -36,7 +37,10 @@ struct NonlinearReport {
 
 class NonlinearSolver {
  public:
-  /// r = F(u) (both of the matrix's size, whole, in the assembly's numbering).
+  /// r = F(u): u whole-length in the assembly's numbering (on several
+  /// processes, exact at the dofs read_only names, NaN elsewhere), r at the
+  /// dofs this process owns (owned_dofs(), in its order; on one process every
+  /// dof: r whole).
   using Residual = std::function<void(std::span<const double> u, std::span<double> r)>;
   /// J = ∂F/∂u at u: J is zeroed before the call; add into it (Matrix::add),
   /// the solver finalizes it after.
@@ -58,6 +62,8 @@ class NonlinearSolver {
   /// this process's rows read, setup::nodes_read) instead of whole. Nothing
   /// changes on one process.
   void read_only(std::vector<Index> nodes, int block_size);
+  /// The dofs whose entries of r the residual callback writes.
+  const OwnedDofs& owned_dofs() const { return owned_; }
   /// Solves F(u) = 0 from u (the initial guess in, the last iterate out).
   /// Never throws for non-convergence: the report says how it ended. Stops
   /// early (not converged, reason STAGNATED) when ||F|| fell by less than
@@ -66,8 +72,8 @@ class NonlinearSolver {
 
   // For the PETSc callbacks (la/nonlinear_solver.cpp): F and J at u. On
   // several processes (a distributed J), u is gathered whole for the
-  // callbacks (or at read_only's nodes; assembly numbering) and each process
-  // keeps its own entries of the r they compute whole.
+  // callbacks (or at read_only's nodes; assembly numbering) and r is set from
+  // the owned entries they compute.
   void evaluate_residual(PetscVecHandle u, PetscVecHandle r);
   void evaluate_jacobian(PetscVecHandle u);
   std::exception_ptr callback_error;  ///< thrown in a callback, rethrown by solve
@@ -81,6 +87,7 @@ class NonlinearSolver {
   Residual residual_;
   Jacobian jacobian_;
   Vector r_;
+  OwnedDofs owned_;                  ///< J's owned rows
   Vector u_whole_, r_whole_;         ///< scratch of a distributed solve (J's layout)
   std::optional<NodeGather> reads_;  ///< read_only's nodes (empty: u whole)
   /// u as the callbacks get it (distributed J).

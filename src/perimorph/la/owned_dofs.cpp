@@ -31,6 +31,24 @@ std::vector<double> OwnedDofs::of(std::span<const double> whole) const {
   return out;
 }
 
+std::vector<double> OwnedDofs::at(std::span<const double> owned, std::span<const Index> dofs) const {
+  PERIMORPH_ASSERT(owned.size() == size(), "OwnedDofs::at: not an array at the owned dofs");
+  std::vector<double> out(dofs.size(), -0.0);
+  for (std::size_t k = 0; k < dofs.size(); ++k) {
+    const std::ptrdiff_t j = position(dofs[k]);
+    if (j >= 0) out[k] = owned[static_cast<std::size_t>(j)];
+  }
+  return every_ ? out : from_owners(std::move(out));
+}
+
+std::vector<double> OwnedDofs::whole(std::span<const double> owned) const {
+  PERIMORPH_ASSERT(owned.size() == size(), "OwnedDofs::whole: not an array at the owned dofs");
+  if (every_) return {owned.begin(), owned.end()};
+  std::vector<double> out(static_cast<std::size_t>(num_dofs_), -0.0);
+  for (std::size_t j = 0; j < dofs_.size(); ++j) out[static_cast<std::size_t>(dofs_[j])] = owned[j];
+  return from_owners(std::move(out));
+}
+
 double OwnedDofs::sum(double init, const std::function<double(std::size_t)>& term) const {
   const std::size_t n = size();
   if (every_) {

@@ -15,6 +15,11 @@
 
 namespace perimorph::la {
 
+/// The values of a dof vector at the given dofs (assembly numbering). Where
+/// the vector is spread over processes, a collective call: every process asks
+/// for the same dofs and gets the same values. An empty function: no vector.
+using DofValuesAt = std::function<std::vector<double>(std::span<const Index>)>;
+
 class OwnedDofs {
  public:
   OwnedDofs() = default;
@@ -29,6 +34,14 @@ class OwnedDofs {
   std::ptrdiff_t position(Index dof) const;
   /// A whole-length array (assembly numbering) at the owned dofs.
   std::vector<double> of(std::span<const double> whole) const;
+  /// The values at any `dofs` of the array `owned` (one value per owned
+  /// entry, in this order), each from the process that owns it (collective:
+  /// every process asks for the same dofs; la::from_owners, the values
+  /// exact). On one process owned[dofs[k]].
+  std::vector<double> at(std::span<const double> owned, std::span<const Index> dofs) const;
+  /// The whole-length array of `owned` on every process (collective; O(dofs)
+  /// on every process: for a checkpoint or a remodel, not for every solve).
+  std::vector<double> whole(std::span<const double> owned) const;
   /// init + Σ term(j) over the owned entries j in dof order; spread over
   /// processes, each process's sum added in rank order (la::sum_over_processes:
   /// the same bits on every process; collective). On one process the plain

@@ -169,6 +169,24 @@ std::vector<double> sum_over_processes(std::vector<double> values) {
   return values;
 }
 
+std::vector<double> from_owners(std::vector<double> values) {
+  if (world_size() == 1 || values.empty()) return values;
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM,
+                PETSC_COMM_WORLD);
+  return values;
+}
+
+std::vector<char> union_over_processes(std::vector<char> flags) {
+  if (world_size() == 1 || flags.empty()) return flags;
+  std::vector<double> set;
+  for (std::size_t k = 0; k < flags.size(); ++k) {
+    PERIMORPH_ASSERT(flags[k] == 0 || flags[k] == 1, "union_over_processes takes flags of 0 and 1");
+    if (flags[k]) set.push_back(static_cast<double>(k));
+  }
+  for (double k : all_gather(set)) flags[static_cast<std::size_t>(k)] = 1;
+  return flags;
+}
+
 std::vector<long long> min_over_processes(std::vector<long long> values) {
   if (world_size() == 1 || values.empty()) return values;
   MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_LONG_LONG, MPI_MIN,

@@ -165,23 +165,6 @@ std::vector<double> Vector::to_replicated() const {
   return out;
 }
 
-std::vector<double> Vector::owned_entries(double elsewhere) const {
-  if (!distribution_) return to_std();
-  const Distribution& d = *distribution_;
-  PetscInt bs = 1;
-  PM_PETSC(VecGetBlockSize(v_, &bs));
-  std::vector<double> out(static_cast<std::size_t>(d.num_nodes() * bs), elsewhere);
-  const PetscScalar* a = nullptr;
-  PM_PETSC(VecGetArrayRead(v_, &a));
-  for (Index n = 0; n < d.num_nodes(); ++n) {
-    if (!d.owns(n)) continue;
-    const Index at = (d.to_distributed[static_cast<std::size_t>(n)] - d.begin) * bs;
-    for (Index k = 0; k < bs; ++k) out[static_cast<std::size_t>(n * bs + k)] = a[at + k];
-  }
-  PM_PETSC(VecRestoreArrayRead(v_, &a));
-  return out;
-}
-
 std::vector<double> Vector::at_owned(const OwnedDofs& owned) const {
   if (!distribution_) return to_std();
   PetscInt bs = 1;

@@ -51,10 +51,6 @@ class Vector {
   /// The whole vector in the assembly's numbering on every process
   /// (collective). Without a distribution: to_std.
   std::vector<double> to_replicated() const;
-  /// The entries this process owns, in a whole-length array in the
-  /// assembly's numbering, `elsewhere` at the others (nothing is sent).
-  /// Without a distribution: to_std.
-  std::vector<double> owned_entries(double elsewhere) const;
   /// The entries at `owned`'s dofs (this process's, la::OwnedDofs), in its
   /// order (nothing is sent). Without a distribution: to_std.
   std::vector<double> at_owned(const OwnedDofs& owned) const;

@@ -145,10 +145,10 @@ void QuasiStaticRun::solve() {
                              summary_.last_solve, iteration_seconds);
   }
   state_.u = gather(u_);
-  const std::vector<double>& F = system_->applied_force();
+  const std::vector<double>& F = system_->applied_force();  // at the owned dofs
   work = add_over_dofs(work, [&](std::size_t j) {
     const auto k = static_cast<std::size_t>(owned_dofs_.dof(j));
-    return lambda * F[k] * (state_.u[k] - u_before[j]);
+    return lambda * F[j] * (state_.u[k] - u_before[j]);
   });
 }
 
@@ -267,8 +267,7 @@ void QuasiStaticRun::record(bool force_vtu) {
     balls_written_ = adaptivity_->balls().size();
   }
   std::vector<double> reaction(fint_);
-  for (std::size_t j = 0; j < reaction.size(); ++j)
-    reaction[j] -= lambda * F[static_cast<std::size_t>(owned_dofs_.dof(j))];
+  for (std::size_t j = 0; j < reaction.size(); ++j) reaction[j] -= lambda * F[j];
   const double energy = add_over_dofs(
       0.0, [&](std::size_t j) { return 0.5 * uv[static_cast<std::size_t>(owned_dofs_.dof(j))] * fint_[j]; });
   u_prev_ = owned_dofs_.of(uv);

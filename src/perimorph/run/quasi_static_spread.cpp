@@ -15,7 +15,10 @@ namespace perimorph::run {
 void QuasiStaticRun::choose_gather() {
   halo_.reset();
   const auto* d = u_.distribution();
-  owned_dofs_ = la::OwnedDofs(d, disc_->dim(), disc_->dofmap.num_dofs());
+  owned_dofs_ = system_->owned_dofs();  // the system's arrays at the owned dofs are in its order
+  PERIMORPH_ASSERT(owned_dofs_.size() == (d ? static_cast<std::size_t>(d->owned_nodes() * disc_->dim())
+                                            : static_cast<std::size_t>(disc_->dofmap.num_dofs())),
+                   "the run's vectors are laid out as the system's");
   if (!d) return;
   std::vector<Index> nodes = setup::nodes_read(*disc_);
   std::vector<char> read(static_cast<std::size_t>(d->num_nodes()), 0);

@@ -4,6 +4,7 @@
 #include "perimorph/assembly/local_assembly.hpp"
 #include "perimorph/assembly/nonlocal_assembly.hpp"
 #include "perimorph/core/error.hpp"
+#include "perimorph/la/petsc_session.hpp"
 #include "perimorph/la/shell_matrix.hpp"
 
 #include <fmt/format.h>
@@ -60,11 +61,12 @@ ConstrainedSystem::ConstrainedSystem(const setup::Discretization& model, la::Mat
       K_(std::move(K)),
       A_(K_.duplicate()),
       bc_(std::move(bc)),
-      applied_force_(F.begin(), F.end()),
       rhs_unit_(K_.make_vector()),
       rhs_(K_.make_vector()) {
-  constrain_rhs(F);
-  initial_diagonal_ = A_.diagonal();
+  owned_ = la::OwnedDofs(rhs_unit_.distribution(), model.dim(), model.dofmap.num_dofs());
+  applied_force_ = owned_.of(F);
+  constrain_rhs();
+  initial_diagonal_ = A_.diagonal().at_owned(owned_);
 }
 
 ConstrainedSystem::ConstrainedSystem(const setup::Discretization& model, MatrixFreeStiffness K,
@@ -73,14 +75,15 @@ ConstrainedSystem::ConstrainedSystem(const setup::Discretization& model, MatrixF
       K_(no_matrix(model.dim())),
       A_(no_matrix(model.dim())),
       bc_(std::move(bc)),
-      applied_force_(F.begin(), F.end()),
       rhs_unit_(K.preconditioner.make_vector()),
       rhs_(K.preconditioner.make_vector()) {
   const Index n = model.dofmap.num_dofs();
+  owned_ = la::OwnedDofs(rhs_unit_.distribution(), model.dim(), n);
+  applied_force_ = owned_.of(F);
   std::vector<char> fixed(static_cast<std::size_t>(n), 0);
   for (Index d : bc_.dofs) fixed[static_cast<std::size_t>(d)] = 1;
   free_ = std::make_unique<MatrixFree>(std::move(K), std::move(fixed), model.dim());
-  constrain_rhs(F);
+  constrain_rhs();
   // The eliminated rows and columns of the preconditioner are zero blocks but
   // for their diagonal: dropped, so that its AMG sees only the coupling (on
   // one process: without_zero_blocks reads every row).
@@ -89,7 +92,7 @@ ConstrainedSystem::ConstrainedSystem(const setup::Discretization& model, MatrixF
   P.eliminate_dirichlet(bc_.dofs, g, scratch);
   if (!P.distribution()) P = P.without_zero_blocks();
   P.set_spd();
-  initial_diagonal_ = P.diagonal();
+  initial_diagonal_ = P.diagonal().at_owned(owned_);
 }
 
 ConstrainedSystem::~ConstrainedSystem() = default;
@@ -99,25 +102,25 @@ la::Vector ConstrainedSystem::make_vector() const {
   return (free_ ? free_->stiffness.preconditioner : K_).make_vector();
 }
 
-void ConstrainedSystem::constrain_rhs(std::span<const double> F) {
-  const Index n = model_.dofmap.num_dofs();
+void ConstrainedSystem::constrain_rhs() {
   la::Vector g = make_vector();
   PERIMORPH_ASSERT(bc_.dofs.size() == bc_.values.size() && std::is_sorted(bc_.dofs.begin(), bc_.dofs.end()) &&
                        std::adjacent_find(bc_.dofs.begin(), bc_.dofs.end()) == bc_.dofs.end(),
                    "the prescribed dofs must be sorted and unique");
-  std::vector<double> gv(static_cast<std::size_t>(n), 0.0);
-  for (std::size_t k = 0; k < bc_.dofs.size(); ++k) gv[static_cast<std::size_t>(bc_.dofs[k])] = bc_.values[k];
-  g.assign_replicated(gv);
+  g.set_at(bc_.dofs, bc_.values);
   if (free_) {
     // b = F − K g on the free rows, g on the prescribed ones (as eliminate_dirichlet).
     la::Vector Kg = make_vector();
     free_->K.mult(g, Kg);
-    std::vector<double> b = Kg.to_replicated();
-    for (std::size_t k = 0; k < b.size(); ++k) b[k] = free_->fixed[k] ? gv[k] : F[k] - b[k];
-    rhs_unit_.assign_replicated(b);
+    std::vector<double> b = Kg.at_owned(owned_);
+    for (std::size_t j = 0; j < b.size(); ++j) {
+      const Index dof = owned_.dof(j);
+      b[j] = free_->fixed[static_cast<std::size_t>(dof)] ? prescribed_value(dof) : applied_force_[j] - b[j];
+    }
+    rhs_unit_.assign_owned(owned_, b);
     return;
   }
-  rhs_unit_.assign_replicated(F);
+  rhs_unit_.assign_owned(owned_, applied_force_);
   A_.eliminate_dirichlet(bc_.dofs, g, rhs_unit_);
   A_.set_spd();
 }
@@ -197,23 +200,53 @@ void ConstrainedSystem::set_reference_diagonal(std::vector<double> diagonal) {
   initial_diagonal_ = std::move(diagonal);
 }
 
+namespace {
+
+/// Every process's `mine` (sorted) on every process, sorted (collective).
+std::vector<Index> gathered_sorted(const std::vector<Index>& mine) {
+  if (la::world_size() == 1) return mine;
+  const std::vector<double> all = la::all_gather(std::vector<double>(mine.begin(), mine.end()));
+  std::vector<Index> out(all.size());
+  std::transform(all.begin(), all.end(), out.begin(), [](double v) { return static_cast<Index>(v); });
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
 std::vector<Index> ConstrainedSystem::without_stiffness(std::span<const Index> dofs) const {
   PERIMORPH_ASSERT(!free_, "a matrix-free system cannot change (setup::check_matrix_free)");
-  const std::vector<double> diag = A_.diagonal_at(dofs);
+  PERIMORPH_ASSERT(std::is_sorted(dofs.begin(), dofs.end()), "without_stiffness takes sorted dofs");
+  std::vector<Index> mine;
+  std::vector<std::size_t> at;
+  for (Index d : dofs)
+    if (const std::ptrdiff_t j = owned_.position(d); j >= 0) {
+      mine.push_back(d);
+      at.push_back(static_cast<std::size_t>(j));
+    }
+  const std::vector<double> diag = A_.owned_diagonal_at(mine);
   std::vector<Index> out;
-  for (std::size_t k = 0; k < dofs.size(); ++k) {
-    const double d0 = initial_diagonal_[static_cast<std::size_t>(dofs[k])];
-    if (std::abs(diag[k]) <= 1e-12 * std::abs(d0)) out.push_back(dofs[k]);
-  }
-  return out;
+  for (std::size_t k = 0; k < mine.size(); ++k)
+    if (std::abs(diag[k]) <= 1e-12 * std::abs(initial_diagonal_[at[k]])) out.push_back(mine[k]);
+  return gathered_sorted(out);
+}
+
+std::vector<Index> ConstrainedSystem::free_dofs_without_stiffness() const {
+  std::vector<Index> free;
+  for (std::size_t j = 0; j < owned_.size(); ++j)
+    if (!prescribed(owned_.dof(j))) free.push_back(owned_.dof(j));
+  return without_stiffness(free);
 }
 
 void ConstrainedSystem::hold(std::span<const Index> dofs, bool zero_rhs) {
   PERIMORPH_ASSERT(!free_, "a matrix-free system cannot change (setup::check_matrix_free)");
   if (dofs.empty()) return;
   for (Index d : dofs) {
+    // A spread over processes keeps its owned rows only (Matrix::add).
+    const std::ptrdiff_t j = owned_.position(d);
+    if (j < 0) continue;
     const Index one[1] = {d};
-    const double spring[1] = {initial_diagonal_[static_cast<std::size_t>(d)]};
+    const double spring[1] = {initial_diagonal_[static_cast<std::size_t>(j)]};
     A_.add(one, one, spring);
   }
   A_.finalize();

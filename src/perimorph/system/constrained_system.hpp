@@ -12,6 +12,7 @@
 #include "perimorph/core/error.hpp"
 #include "perimorph/la/linear_solver.hpp"
 #include "perimorph/la/matrix.hpp"
+#include "perimorph/la/owned_dofs.hpp"
 #include "perimorph/la/vector.hpp"
 #include "perimorph/setup/boundary_conditions.hpp"
 #include "perimorph/setup/discretization.hpp"
@@ -97,9 +98,14 @@ class ConstrainedSystem {
   const std::vector<Index>& last_downdated() const { return last_downdated_; }
   /// How many finish_downdate calls there have been (a new last_downdated()).
   std::size_t downdate_count() const { return downdates_; }
-  /// Of `dofs`, those whose diagonal of A has fallen to round-off (1e-12) of
-  /// its value before any downdate: dofs left with no stiffness.
+  /// Of `dofs` (sorted), those whose diagonal of A has fallen to round-off
+  /// (1e-12) of its value before any downdate: dofs left with no stiffness,
+  /// sorted. Spread over processes, each looks at the dofs it owns and the
+  /// answers are gathered (collective: the same `dofs` on every process, the
+  /// same answer).
   std::vector<Index> without_stiffness(std::span<const Index> dofs) const;
+  /// The same for every free dof, without listing them whole.
+  std::vector<Index> free_dofs_without_stiffness() const;
   /// Holds each dof by a spring of its stiffness before any downdate on A's
   /// diagonal (K unchanged: the spring carries no force); with `zero_rhs` the
   /// right-hand side there is set to 0. A is finalized.
@@ -118,11 +124,18 @@ class ConstrainedSystem {
   /// first assembly's. Then operator_changed().
   void reassemble(const setup::Discretization& before, const setup::Discretization& after,
                   std::span<const Index> cells, const bonds::BrokenBonds* failed = nullptr);
+  /// The dofs this process owns (every dof on one process): the arrays below
+  /// named "at the owned dofs" hold one value per owned dof, in its order.
+  const la::OwnedDofs& owned_dofs() const { return owned_; }
   /// The diagonal of A before any downdate (the reference of
-  /// without_stiffness and the springs of hold), one per dof.
+  /// without_stiffness and the springs of hold), at the owned dofs.
   const std::vector<double>& reference_diagonal() const { return initial_diagonal_; }
-  /// Replaces it (a system remodelled from another carries the first one's
-  /// reference over, system/remodel.hpp).
+  /// It at any `dofs` (collective where spread: la::OwnedDofs::at).
+  std::vector<double> reference_diagonal_at(std::span<const Index> dofs) const {
+    return owned_.at(initial_diagonal_, dofs);
+  }
+  /// Replaces it, at the owned dofs (a system remodelled from another carries
+  /// the first one's reference over, system/remodel.hpp).
   void set_reference_diagonal(std::vector<double> diagonal);
   /// True if the dof is prescribed.
   bool prescribed(Index dof) const { return std::binary_search(bc_.dofs.begin(), bc_.dofs.end(), dof); }
@@ -136,8 +149,13 @@ class ConstrainedSystem {
   la::Vector& rhs_unit() { return rhs_unit_; }
   const la::Vector& rhs_unit() const { return rhs_unit_; }
   const setup::DirichletData& bc() const { return bc_; }
-  /// The external force at load factor 1 (before the constraints).
+  /// The external force at load factor 1 (before the constraints), at the
+  /// owned dofs.
   const std::vector<double>& applied_force() const { return applied_force_; }
+  /// It at any `dofs` (collective where spread: la::OwnedDofs::at).
+  std::vector<double> applied_force_at(std::span<const Index> dofs) const {
+    return owned_.at(applied_force_, dofs);
+  }
 
  private:
   struct MatrixFree;
@@ -146,17 +164,18 @@ class ConstrainedSystem {
     PERIMORPH_ASSERT(!free_, "a matrix-free system has no assembled matrix");
     return matrix;
   }
-  /// rhs_unit and the prescribed values at load factor 1 from bc_ and F.
-  void constrain_rhs(std::span<const double> F);
+  /// rhs_unit from bc_ and applied_force_.
+  void constrain_rhs();
 
   const setup::Discretization& model_;
   std::unique_ptr<MatrixFree> free_;  ///< matrix-free only
   la::Matrix K_, A_;
   setup::DirichletData bc_;  ///< the prescribed dofs (sorted, unique) and values at load factor 1
-  std::vector<double> applied_force_;
+  la::OwnedDofs owned_;
+  std::vector<double> applied_force_;  ///< at the owned dofs
   la::Vector rhs_unit_, rhs_;
   std::unique_ptr<la::LinearSolver> solver_;
-  std::vector<double> initial_diagonal_;  ///< of A, before any downdate
+  std::vector<double> initial_diagonal_;  ///< of A, before any downdate, at the owned dofs
   // Collected by downdate, applied by finish_downdate.
   std::vector<Index> touched_, rhs_at_, free_dofs_;
   std::vector<Index> last_downdated_;

@@ -58,7 +58,7 @@ void ConstrainedSystem::save(core::BinaryWriter& out) const {
   save_matrix(out, K_);
   save_matrix(out, A_);
   out.put_vector(rhs_unit_.to_replicated());
-  out.put_vector(initial_diagonal_);
+  out.put_vector(owned_.whole(initial_diagonal_));
   out.put<std::uint64_t>(downdates_);
   out.put_vector(last_downdated_);
 }
@@ -78,10 +78,11 @@ std::unique_ptr<ConstrainedSystem> ConstrainedSystem::restored(const setup::Disc
   system->A_ = load_matrix(in, model);
   system->A_.set_spd();
   const std::vector<double> rhs = in.get_vector<double>();
-  system->initial_diagonal_ = in.get_vector<double>();
-  if (rhs.size() != static_cast<std::size_t>(n) || system->initial_diagonal_.size() != rhs.size())
+  const std::vector<double> reference = in.get_vector<double>();
+  if (rhs.size() != static_cast<std::size_t>(n) || reference.size() != rhs.size())
     in.fail(fmt::format("vectors of {} and {} values where the model has {} dofs", rhs.size(),
-                        system->initial_diagonal_.size(), n));
+                        reference.size(), n));
+  system->initial_diagonal_ = system->owned_.of(reference);
   system->rhs_unit_.assign_replicated(rhs);
   system->downdates_ = in.get<std::uint64_t>();
   system->last_downdated_ = in.get_vector<Index>();

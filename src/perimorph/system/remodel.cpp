@@ -25,13 +25,24 @@ bool same_cell_dofs(const dofs::DofMap& a, const dofs::DofMap& b, Index c) {
   return a.continuity(c) == b.continuity(c) && a.cell_nodes(c).size() == b.cell_nodes(c).size();
 }
 
-/// The reference diagonal carried over (transfer_dof_vector, max), the new
-/// system's own where nothing carries over and on prescribed dofs.
-void carry_reference(ConstrainedSystem& system, std::vector<double> reference) {
+/// The reference diagonal carried over (`reference`, whole-length: from
+/// transfer_dof_vector, max), the new system's own where nothing carries over
+/// and on prescribed dofs.
+void carry_reference(ConstrainedSystem& system, const std::vector<double>& reference) {
+  const la::OwnedDofs& owned = system.owned_dofs();
+  std::vector<double> carried = owned.of(reference);
   const std::vector<double>& fresh = system.reference_diagonal();
-  for (std::size_t k = 0; k < reference.size(); ++k)
-    if (!(reference[k] > 0.0) || system.prescribed(static_cast<Index>(k))) reference[k] = fresh[k];
-  system.set_reference_diagonal(std::move(reference));
+  for (std::size_t j = 0; j < carried.size(); ++j)
+    if (!(carried[j] > 0.0) || system.prescribed(owned.dof(j))) carried[j] = fresh[j];
+  system.set_reference_diagonal(std::move(carried));
+}
+
+/// The old system's reference diagonal in `after`'s numbering (whole-length;
+/// collective where spread: the one O(dofs) gathering of a remodel).
+std::vector<double> transferred_reference(const ConstrainedSystem& system,
+                                          const setup::Discretization& before,
+                                          const setup::Discretization& after) {
+  return transfer_dof_vector(before, after, system.owned_dofs().whole(system.reference_diagonal()), true);
 }
 
 /// Adds sign × each block to a matrix.
@@ -161,9 +172,9 @@ Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& befor
                                : system::assemble_stiffness(after, failed, damage).K;
     out.times.add = since(t0);
     t0 = clock::now();
-    std::vector<double> reference = transfer_dof_vector(before, after, system.reference_diagonal(), true);
+    const std::vector<double> reference = transferred_reference(system, before, after);
     out.system = std::make_unique<ConstrainedSystem>(after, std::move(K), std::move(bc), F);
-    carry_reference(*out.system, std::move(reference));
+    carry_reference(*out.system, reference);
     out.times.constrain = since(t0);
     return out;
   }
@@ -219,9 +230,9 @@ Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& befor
   out.times.add = since(t0);
 
   t0 = clock::now();
-  std::vector<double> reference = transfer_dof_vector(before, after, system.reference_diagonal(), true);
+  const std::vector<double> reference = transferred_reference(system, before, after);
   out.system = std::make_unique<ConstrainedSystem>(after, std::move(K_new), std::move(bc), F);
-  carry_reference(*out.system, std::move(reference));
+  carry_reference(*out.system, reference);
   out.times.constrain = since(t0);
   return out;
 }
