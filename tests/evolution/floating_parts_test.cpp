@@ -17,6 +17,7 @@
 #include "perimorph/setup/discretization.hpp"
 #include "perimorph/system/stiffness.hpp"
 #include "support/cases.hpp"
+#include "support/floating_plate.hpp"
 
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
@@ -28,70 +29,14 @@
 namespace perimorph {
 namespace {
 
-using testing::fixed;
-
-/// Plate [0, 4] × [0, 2], fully non-local (DG), u_x = 0 on x = 0 and u_y = 0
-/// at the origin; the right edge pulled to u_x = 0.004, or (traction) loaded
-/// by a traction along x.
-casefile::CaseConfig plate(bool traction) {
-  auto c = testing::box_case(2, {16, 8, 1}, Vec3(4.0, 2.0, 1.0), 1.0, 0.25);
-  testing::add_nonlocal(c, casefile::KernelKind::gaussian, 0.375, 0.125, 2,
-                        casefile::Discretization::discontinuous);
-  c.alpha.value = 1.0;
-  c.materials[0].nu = std::numeric_limits<double>::quiet_NaN();
-  casefile::NodeSetSpec origin;
-  origin.name = "origin";
-  c.node_sets = {origin};
-  c.dirichlet = {fixed("xmin", 0), fixed("origin", 1)};
-  if (traction) {
-    casefile::TractionSpec t;
-    t.set = "xmax";
-    t.value = Vec3(1e-3, 0.0, 0.0);
-    c.tractions = {t};
-  } else {
-    c.dirichlet.push_back(fixed("xmax", 0, 0.004));
-  }
-  c.fracture.enabled = true;
-  c.fracture.s_crit = 1e-6;
-  return c;
-}
-
-/// Cells right of x = 2 moved by (1, 0): only the bonds across x = 2 stretch.
-std::vector<double> jump_at_middle(const setup::Discretization& model) {
-  const auto& dm = model.dofmap;
-  std::vector<double> u(static_cast<std::size_t>(dm.num_dofs()), 0.0);
-  for (Index c = 0; c < model.mesh.num_cells(); ++c) {
-    const auto nodes = dm.cell_nodes(c);
-    Vec3 centre = Vec3::Zero();
-    for (Index a : nodes) centre += dm.node_coordinate(a);
-    if (centre.x() / static_cast<double>(nodes.size()) > 2.0)
-      for (Index a : nodes) u[static_cast<std::size_t>(a * 2)] = 1.0;
-  }
-  return u;
-}
+using testing::break_and_support;
+using testing::jump_at_middle;
 
 /// The run's constrained system of a model at load factor 1 (applied forces,
 /// prescribed values).
 system::ConstrainedSystem constrained_system(const setup::Discretization& model) {
   return system::ConstrainedSystem(model, system::assemble_stiffness(model).K, setup::build_dirichlet(model),
                                    setup::build_external_force(model));
-}
-
-/// One pass of the run's components at the state's displacement, as the run
-/// loop makes it: bond failure inspects and applies, then the support of
-/// parts cut free. Returns the number of bonds failed.
-std::size_t break_and_support(const setup::Discretization& model, evolution::RunState& state,
-                              system::ConstrainedSystem& sys) {
-  evolution::BondFailure failure(model);
-  evolution::PartSupport support(model);
-  const std::size_t bonds = failure.inspect(state, sys).changes;
-  if (bonds > 0) {
-    EXPECT_EQ(failure.apply(state, sys), evolution::Effect::downdate);
-  }
-  if (!support.inspect(state, sys).quiet()) {
-    EXPECT_EQ(support.apply(state, sys), evolution::Effect::hold);
-  }
-  return bonds;
 }
 
 /// Assembles, constrains and fails every bond across x = 2.
@@ -103,7 +48,7 @@ system::ConstrainedSystem cut_plate(const setup::Discretization& model, evolutio
 }
 
 TEST(FloatingParts, CutFreeHalfIsHeldWithoutForce) {
-  const auto model = setup::build_discretization(plate(false));
+  const auto model = setup::build_discretization(testing::floating_plate(false));
   evolution::RunState state(model);
   system::ConstrainedSystem cut = cut_plate(model, state);
   // Every bond across x = 2 failed: no cell pair across it keeps one.
@@ -140,7 +85,7 @@ TEST(FloatingParts, CutFreeHalfIsHeldWithoutForce) {
 // cells' graph rows, issue 17), gathered in any order, make the whole graph's
 // parts: the same floating part and the same pins, bit for bit.
 TEST(FloatingParts, LinksOfThePartsFindTheWholeGraphsParts) {
-  const auto model = setup::build_discretization(plate(false));
+  const auto model = setup::build_discretization(testing::floating_plate(false));
   evolution::RunState state(model);
   system::ConstrainedSystem cut = constrained_system(model);
   state.u = jump_at_middle(model);
@@ -178,7 +123,7 @@ TEST(FloatingParts, LinksOfThePartsFindTheWholeGraphsParts) {
 }
 
 TEST(FloatingParts, UnbalancedCutFreePartIsAnError) {
-  const auto model = setup::build_discretization(plate(true));
+  const auto model = setup::build_discretization(testing::floating_plate(true));
   evolution::RunState state(model);
   try {
     cut_plate(model, state);
@@ -194,7 +139,7 @@ TEST(FloatingParts, UnbalancedCutFreePartIsAnError) {
 // (u_x = (x − 3.75)² there): its nodes keep no stiffness along x while the
 // traction pulls them along x. That is an error, not a dropped force.
 TEST(FloatingParts, ForceOnANodeLeftWithoutStiffnessIsAnError) {
-  auto c = plate(true);
+  auto c = testing::floating_plate(true);
   c.fracture.s_crit = 1e-12;
   const auto model = setup::build_discretization(c);
   system::ConstrainedSystem sys = constrained_system(model);
@@ -224,7 +169,7 @@ TEST(FloatingParts, ForceOnANodeLeftWithoutStiffnessIsAnError) {
 // increment and what was kept (before, CG or Cholesky failed on the singular
 // matrix).
 TEST(FloatingParts, UnbalancedMechanismStopsTheRunAndSaysWhy) {
-  auto c = plate(true);
+  auto c = testing::floating_plate(true);
   c.loading.factors = {0.25, 3.0};  // mean strain 2.5e-4, then 3e-3 > s_crit in most bonds
   c.fracture.s_crit = 1e-3;
   c.solver.petsc_options = "-ksp_type preonly -pc_type cholesky";
