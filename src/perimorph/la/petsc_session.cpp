@@ -194,13 +194,6 @@ std::vector<long long> min_over_processes(std::vector<long long> values) {
   return values;
 }
 
-std::vector<char> max_over_processes(std::vector<char> flags) {
-  if (world_size() == 1 || flags.empty()) return flags;
-  MPI_Allreduce(MPI_IN_PLACE, flags.data(), static_cast<int>(flags.size()), MPI_SIGNED_CHAR, MPI_MAX,
-                PETSC_COMM_WORLD);
-  return flags;
-}
-
 void on_process_zero(const std::function<void()>& act) {
   // Process 0 is then the lowest (and only) process that can fail.
   on_every_process([&] {

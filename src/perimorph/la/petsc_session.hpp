@@ -58,12 +58,10 @@ std::vector<double> from_owners(std::vector<double> values);
 /// The elementwise smallest of `values` over the ranks (collective; every
 /// rank passes the same length; `values` itself on one rank).
 std::vector<long long> min_over_processes(std::vector<long long> values);
-/// The elementwise largest of `flags` over the ranks (collective; the same
-/// length on every rank; `flags` itself on one rank).
-std::vector<char> max_over_processes(std::vector<char> flags);
-/// The same for flags of 0 and 1 (their union), sending only where they are
-/// set: each rank's set entries are gathered by every rank (8 bytes a set
-/// entry), not the whole array.
+/// The elementwise largest of `flags` (0 or 1: their union) over the ranks,
+/// sending only where they are set: each rank's set entries are gathered by
+/// every rank (8 bytes a set entry), not the whole array (collective; the
+/// same length on every rank; `flags` itself on one rank).
 std::vector<char> union_over_processes(std::vector<char> flags);
 
 /// Runs `act` on process 0 alone (what it alone does in a run every process
