@@ -59,7 +59,7 @@ TEST(EvolutionComponent, BondFailureInspectsWithoutChangingAndAppliesADowndate) 
   EXPECT_FALSE(f.sys.last_downdated().empty());
   EXPECT_GT((f.sys.K().to_dense() - K0).cwiseAbs().maxCoeff(), 0.0);
   double per_cell = 0.0;
-  for (double v : f.state.cell_dissipated) per_cell += v;
+  for (const auto& [c, v] : f.state.cell_dissipated) per_cell += v;
   EXPECT_NEAR(per_cell, f.state.energy.dissipated, 1e-12 * per_cell);
   // At the same displacement the failed bonds are gone and the rest were
   // under the criterion: quiet.

@@ -126,8 +126,8 @@ FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bon
     const double critical = assembly::energy_at_stretch(b, s_crit_);
     energy.dissipated += critical;
     energy.overshoot += b.energy - critical;
-    state.cell_dissipated[static_cast<std::size_t>(b.id.e)] += 0.5 * critical;
-    state.cell_dissipated[static_cast<std::size_t>(b.id.f)] += 0.5 * critical;
+    state.cell_dissipated[b.id.e] += 0.5 * critical;
+    state.cell_dissipated[b.id.f] += 0.5 * critical;
     shape_of(b, bs);
     const std::size_t m = bs.dofs.size();
     block.assign(m * m, 0.0);
@@ -144,10 +144,12 @@ FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bon
 
 FractureFields BondFailure::fields(const RunState& state) const {
   FractureFields out;
-  out.dissipated = state.cell_dissipated;
+  const auto ncells = static_cast<std::size_t>(disc_->mesh.num_cells());
+  out.dissipated.assign(ncells, 0.0);
+  for (const auto& [c, d] : state.cell_dissipated) out.dissipated[static_cast<std::size_t>(c)] = d;
   const auto w = assembly::point_bond_weights(space(state), decides_);
   const auto& pts = disc_->nonlocal->points;
-  out.damage.assign(state.cell_dissipated.size(), std::nan(""));
+  out.damage.assign(ncells, std::nan(""));
   for (Index c = 0; c < disc_->mesh.num_cells(); ++c) {
     if (!decides_.empty() && decides_[static_cast<std::size_t>(c)] == 0) continue;
     double d = 0.0;

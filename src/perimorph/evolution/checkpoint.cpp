@@ -169,15 +169,17 @@ void save_state(const RunState& state, core::BinaryWriter& out) {
   }
   out.put_vector(failed);
   out.put_vector(points);
-  out.put_vector(state.cell_dissipated);
+  std::vector<double> cell_dissipated(static_cast<std::size_t>(state.num_cells), 0.0);
+  for (const auto& [c, d] : state.cell_dissipated) cell_dissipated[static_cast<std::size_t>(c)] = d;
+  out.put_vector(cell_dissipated);
   out.put_vector(state.held_dofs);
   out.put<std::uint64_t>(state.detached_dofs);
   out.put<std::uint64_t>(state.floating_parts);
   out.put<std::uint64_t>(state.cell_mechanisms);
   out.put_vector(state.history);
   const EnergyLedger& e = state.energy;
-  for (double v : {e.external_work, e.strain_energy, e.dissipated, e.overshoot, e.damage_dissipated,
-                   e.model_change})
+  for (double v :
+       {e.external_work, e.strain_energy, e.dissipated, e.overshoot, e.damage_dissipated, e.model_change})
     out.put<double>(v);
 }
 
@@ -199,9 +201,11 @@ void restore_state(RunState& state, core::BinaryReader& in) {
     state.failed.add(id);
     state.failed_in_order.push_back(id);
   }
-  std::vector<double> cell_dissipated = in.get_vector<double>();
-  check_size(in, cell_dissipated, state.cell_dissipated.size(), "a dissipation per cell");
-  state.cell_dissipated = std::move(cell_dissipated);
+  const std::vector<double> cell_dissipated = in.get_vector<double>();
+  check_size(in, cell_dissipated, static_cast<std::size_t>(state.num_cells), "a dissipation per cell");
+  state.cell_dissipated.clear();
+  for (std::size_t c = 0; c < cell_dissipated.size(); ++c)
+    if (cell_dissipated[c] != 0.0) state.cell_dissipated[static_cast<Index>(c)] = cell_dissipated[c];
   state.held_dofs = in.get_vector<Index>();
   for (Index d : state.held_dofs)
     if (d < 0 || static_cast<std::size_t>(d) >= state.u.size()) in.fail("a held dof out of range");

@@ -10,6 +10,7 @@
 #include "perimorph/core/types.hpp"
 
 #include <cstddef>
+#include <unordered_map>
 #include <vector>
 
 namespace perimorph::setup {
@@ -54,10 +55,13 @@ struct RunState {
 
   bonds::BrokenBonds failed;                   ///< failed bonds, keyed by cell and point
   std::vector<bonds::BondId> failed_in_order;  ///< the same, in the order they failed
-  std::vector<double> cell_dissipated;         ///< D per cell, half of each failed bond to each end
-  std::vector<Index> held_dofs;                ///< dofs held by springs: detached dofs, pins of parts
-  std::size_t detached_dofs = 0;               ///< free dofs left with no stiffness, cumulative
-  std::size_t floating_parts = 0;              ///< parts cut free and held, cumulative
+  /// D per cell, half of each failed bond to each end: the cells with a
+  /// failed bond only (0 elsewhere), so that it costs the crack, not the model.
+  std::unordered_map<Index, double> cell_dissipated;
+  Index num_cells = 0;              ///< the model's cells (a checkpoint writes D of each)
+  std::vector<Index> held_dofs;     ///< dofs held by springs: detached dofs, pins of parts
+  std::size_t detached_dofs = 0;    ///< free dofs left with no stiffness, cumulative
+  std::size_t floating_parts = 0;   ///< parts cut free and held, cumulative
   std::size_t cell_mechanisms = 0;  ///< cells with a free motion held (cell_mechanisms.hpp), cumulative
   /// The damage d at every local quadrature point (cell-major, THEORY §6);
   /// empty without [material.damage].
