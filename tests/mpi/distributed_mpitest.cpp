@@ -23,7 +23,6 @@
 #include "perimorph/partition/dof_layout.hpp"
 #include "perimorph/setup/boundary_conditions.hpp"
 #include "perimorph/setup/discretization.hpp"
-#include "perimorph/system/constrained_system.hpp"
 #include "perimorph/system/stiffness.hpp"
 #include "support/cases.hpp"
 #include "support/dense_inserter.hpp"
@@ -33,7 +32,6 @@
 #include <Eigen/Cholesky>
 
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 namespace perimorph {
@@ -292,72 +290,6 @@ TEST(DistributedVector, HeldAtTheOwnedDofsOnly) {
   EXPECT_EQ(every.size(), values.size());
   EXPECT_EQ(every.of(values), values);
   EXPECT_EQ(every.position(n - 1), n - 1);
-}
-
-// A system spread over the processes holds its applied force and reference
-// diagonal at its owned dofs only, and reads them at any dof from their owners:
-// bit for bit the whole vectors (A's diagonal gathered whole, the force as
-// built), signed zeros and NaN included.
-TEST(DistributedSystem, ReadsWhatItHoldsAtTheOwnedDofsAtAnyDof) {
-  auto c = mixed_plate();
-  c.loading.body_force = Vec3(0.3, -1.7, 0.0);
-  const auto m = setup::build_discretization(c);
-  const std::vector<double> F = setup::build_external_force(m);
-  system::ConstrainedSystem spread(m, system::assemble_stiffness_over_processes(m).K,
-                                   setup::build_dirichlet(m), F);
-  const Index n = m.dofmap.num_dofs();
-  const auto same_bits = [](const std::vector<double>& a, const std::vector<double>& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
-  };
-  std::vector<Index> some;  // every third dof, last first
-  for (Index d = n - 1; d >= 0; d -= 3) some.push_back(d);
-  const std::vector<double> diagonal = spread.A().diagonal().to_replicated();
-  std::vector<double> reference, force;
-  for (Index d : some) {
-    reference.push_back(diagonal[static_cast<std::size_t>(d)]);
-    force.push_back(F[static_cast<std::size_t>(d)]);
-  }
-  EXPECT_TRUE(same_bits(spread.reference_diagonal_at(some), reference));
-  EXPECT_TRUE(same_bits(spread.applied_force_at(some), force));
-  EXPECT_TRUE(same_bits(spread.owned_dofs().whole(spread.reference_diagonal()), diagonal));
-  EXPECT_EQ(spread.reference_diagonal().size(), spread.owned_dofs().size());
-
-  std::vector<double> odd(spread.owned_dofs().size());
-  std::vector<double> whole(static_cast<std::size_t>(n));
-  for (Index d = 0; d < n; ++d)
-    whole[static_cast<std::size_t>(d)] = d % 5 == 1   ? -0.0
-                                         : d % 5 == 2 ? std::numeric_limits<double>::quiet_NaN()
-                                                      : std::sin(static_cast<double>(d));
-  for (std::size_t j = 0; j < odd.size(); ++j)
-    odd[j] = whole[static_cast<std::size_t>(spread.owned_dofs().dof(j))];
-  std::vector<double> expected;
-  for (Index d : some) expected.push_back(whole[static_cast<std::size_t>(d)]);
-  EXPECT_TRUE(same_bits(spread.owned_dofs().at(odd, some), expected));
-  EXPECT_TRUE(same_bits(spread.owned_dofs().whole(odd), whole));
-
-  // A free dof left without stiffness (its diagonal downdated to zero) is
-  // found by its owner and known to every process.
-  Index lost = n / 2;
-  while (spread.prescribed(lost)) ++lost;
-  const Index one[1] = {lost};
-  const double all_of_it[1] = {diagonal[static_cast<std::size_t>(lost)]};
-  EXPECT_TRUE(spread.free_dofs_without_stiffness().empty());
-  spread.downdate(one, all_of_it);
-  spread.finish_downdate();
-  EXPECT_EQ(spread.without_stiffness(spread.last_downdated()), std::vector<Index>{lost});
-  EXPECT_EQ(spread.free_dofs_without_stiffness(), std::vector<Index>{lost});
-}
-
-// The CG/DG flags' union sends only the flags set: every process gets the
-// elementwise maximum.
-TEST(UnionOverProcesses, EveryProcessGetsTheFlagsAnyProcessSet) {
-  const int rank = la::world_rank(), size = la::world_size();
-  std::vector<char> mine(1000, 0), expected(1000, 0);
-  for (std::size_t k = 0; k < mine.size(); k += 3) {
-    if (static_cast<int>(k % 7) % size == rank) mine[k] = 1;
-    expected[k] = 1;
-  }
-  EXPECT_EQ(la::union_over_processes(mine), expected);
 }
 
 // The run's sums over the dofs (energies, reactions) add each process's

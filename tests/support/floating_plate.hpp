@@ -3,7 +3,7 @@
 // a fully non-local plate whose bonds across x = 2 are made to fail, and one
 // pass of the run's failure components. Used by
 // tests/evolution/floating_parts_test.cpp and, on a system spread over the
-// processes, tests/mpi/part_support_mpitest.cpp.
+// processes, tests/mpi/system_mpitest.cpp.
 
 #include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/evolution/part_support.hpp"

@@ -217,22 +217,6 @@ Vector Matrix::diagonal() const {
   return d;
 }
 
-std::vector<double> Matrix::owned_diagonal_at(std::span<const Index> rows) const {
-  release_view();
-  PetscInt bs = 1;
-  PM_PETSC(MatGetBlockSize(m_, &bs));
-  std::vector<double> out(rows.size());
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    PetscInt row = rows[k];
-    if (distribution_) {
-      PERIMORPH_ASSERT(distribution_->owns(row / bs), "owned_diagonal_at: a row another process owns");
-      row = distribution_->to_distributed[static_cast<std::size_t>(row / bs)] * bs + row % bs;
-    }
-    PM_PETSC(MatGetValues(m_, 1, &row, 1, &row, &out[k]));
-  }
-  return out;
-}
-
 std::vector<double> Matrix::diagonal_at(std::span<const Index> rows) const {
   release_view();
   if (distribution_) {

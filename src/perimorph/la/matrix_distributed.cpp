@@ -1,6 +1,6 @@
 // The distributed parts of la::Matrix (matrix.hpp, issue 17): the
 // constructor from a Distribution, add() into the owned rows' arrays, and the
-// dense copy gathered on every process.
+// dense copy gathered on every process, and reads of the owned rows.
 
 #include "perimorph/core/error.hpp"
 #include "perimorph/la/matrix.hpp"
@@ -203,6 +203,22 @@ std::vector<Eigen::MatrixXd> Matrix::distributed_blocks(std::span<const Index> d
     out.push_back(Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
         values.data() + at, n, n));
     at += static_cast<std::size_t>(n * n);
+  }
+  return out;
+}
+
+std::vector<double> Matrix::owned_diagonal_at(std::span<const Index> rows) const {
+  release_view();
+  PetscInt bs = 1;
+  PM_PETSC(MatGetBlockSize(m_, &bs));
+  std::vector<double> out(rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    PetscInt row = rows[k];
+    if (distribution_) {
+      PERIMORPH_ASSERT(distribution_->owns(row / bs), "owned_diagonal_at: a row another process owns");
+      row = distribution_->to_distributed[static_cast<std::size_t>(row / bs)] * bs + row % bs;
+    }
+    PM_PETSC(MatGetValues(m_, 1, &row, 1, &row, &out[k]));
   }
   return out;
 }
