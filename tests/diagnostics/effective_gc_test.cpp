@@ -377,23 +377,12 @@ TEST(EffectiveGc, AnisotropicKernelDependsOnThePlane) {
   EXPECT_GT(window[2], 1.2 * window[0]);
 }
 
-/// The message of the InputError that `f` throws ("" if none).
-template <class F>
-std::string message_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(EffectiveGc, BadPlanesSayWhatToChange) {
   const auto m3 = setup::build_discretization(block(3, 2, 3.0, KernelKind::constant));
   const auto m2 = setup::build_discretization(block(2, 2, 4.0, KernelKind::constant));
   const auto m1 = setup::build_discretization(block(1, 2, 4.0, KernelKind::constant));
   auto msg = [](const setup::Discretization& m, Vec3 p, Vec3 n) {
-    return message_of([&] { diagnostics::effective_gc(m, {p, n}, 1.0); });
+    return testing::message_of_thrown<InputError>([&] { diagnostics::effective_gc(m, {p, n}, 1.0); });
   };
   EXPECT_NE(msg(m3, Vec3::Ones(), Vec3::Zero()).find("is not a direction"), std::string::npos);
   EXPECT_NE(msg(m3, Vec3(5, 0, 0), Vec3::UnitX()).find("does not cut the body"), std::string::npos);

@@ -64,4 +64,15 @@ inline casefile::CaseConfig mixed_cg_dg_plate() {
   return c;
 }
 
+/// The message of the exception of type E that `f` throws ("" if none).
+template <class E, class F>
+std::string message_of_thrown(F&& f) {
+  try {
+    f();
+  } catch (const E& e) {
+    return e.what();
+  }
+  return "";
+}
+
 }  // namespace perimorph::testing

@@ -57,6 +57,17 @@ inline std::vector<double> jump_at_middle(const setup::Discretization& model) {
   return u;
 }
 
+/// u_x = (x − 3.75)² on the nodes of the last column of cells (x > 3.75):
+/// every bond there with a horizontal component stretches.
+inline void stretch_last_column(const setup::Discretization& model, std::vector<double>& u) {
+  for (Index cell = 0; cell < model.mesh.num_cells(); ++cell)
+    if (model.mesh.cell_centroid(cell).x() > 3.75)
+      for (Index a : model.dofmap.cell_nodes(cell)) {
+        const double d = model.dofmap.node_coordinate(a).x() - 3.75;
+        u[static_cast<std::size_t>(a * 2)] = d * d;
+      }
+}
+
 /// One pass of the run's components at the state's displacement, as the run
 /// loop makes it: bond failure inspects and applies, then the support of
 /// parts cut free. Returns the number of bonds failed.
