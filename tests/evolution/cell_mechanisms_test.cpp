@@ -19,6 +19,7 @@
 #include "perimorph/setup/discretization.hpp"
 #include "perimorph/system/stiffness.hpp"
 #include "support/cases.hpp"
+#include "support/floating_plate.hpp"
 
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
@@ -26,33 +27,7 @@
 namespace perimorph {
 namespace {
 
-using testing::fixed;
-
-/// Plate [0, 4] × [0, 2], fully non-local (DG, 2 × 2 points per cell), u_x = 0
-/// on x = 0, u_y = 0 at the origin; the right edge pulled to u_x = 0.004, or
-/// (traction) loaded by a traction along x.
-casefile::CaseConfig plate(bool traction) {
-  auto c = testing::box_case(2, {16, 8, 1}, Vec3(4.0, 2.0, 1.0), 1.0, 0.25);
-  testing::add_nonlocal(c, casefile::KernelKind::gaussian, 0.375, 0.125, 2,
-                        casefile::Discretization::discontinuous);
-  c.alpha.value = 1.0;
-  c.materials[0].nu = std::numeric_limits<double>::quiet_NaN();
-  casefile::NodeSetSpec origin;
-  origin.name = "origin";
-  c.node_sets = {origin};
-  c.dirichlet = {fixed("xmin", 0), fixed("origin", 1)};
-  if (traction) {
-    casefile::TractionSpec t;
-    t.set = "xmax";
-    t.value = Vec3(1e-3, 0.0, 0.0);
-    c.tractions = {t};
-  } else {
-    c.dirichlet.push_back(fixed("xmax", 0, 0.004));
-  }
-  c.fracture.enabled = true;
-  c.fracture.s_crit = 1e-6;
-  return c;
-}
+using testing::constrained_system;
 
 /// The cell whose centroid is nearest `x`.
 Index cell_at(const setup::Discretization& model, const Vec3& x) {
@@ -85,18 +60,13 @@ std::size_t kill_point(const setup::Discretization& model, Index c, int q, evolu
   return bonds.size();
 }
 
-system::ConstrainedSystem constrained_system(const setup::Discretization& model) {
-  return system::ConstrainedSystem(model, system::assemble_stiffness(model).K, setup::build_dirichlet(model),
-                                   setup::build_external_force(model));
-}
-
 double eigenvalue_ratio(const Eigen::MatrixXd& A) {
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A, Eigen::EigenvaluesOnly);
   return eig.eigenvalues().minCoeff() / eig.eigenvalues().maxCoeff();
 }
 
 TEST(CellMechanisms, DeadPointLeavesASingularMatrix) {
-  const auto model = setup::build_discretization(plate(false));
+  const auto model = setup::build_discretization(testing::floating_plate(false));
   evolution::RunState state(model);
   system::ConstrainedSystem sys = constrained_system(model);
   const double before = eigenvalue_ratio(sys.A().to_dense());
@@ -108,7 +78,7 @@ TEST(CellMechanisms, DeadPointLeavesASingularMatrix) {
 }
 
 TEST(CellMechanisms, DeadPointIsHeldWithoutForce) {
-  const auto model = setup::build_discretization(plate(false));
+  const auto model = setup::build_discretization(testing::floating_plate(false));
   evolution::RunState state(model);
   system::ConstrainedSystem sys = constrained_system(model);
   kill_point(model, cell_at(model, Vec3(2.1, 1.1, 0.0)), 3, state, sys, true);
@@ -139,7 +109,7 @@ TEST(CellMechanisms, DeadPointIsHeldWithoutForce) {
 }
 
 TEST(CellMechanisms, ForceDoingWorkOnTheMotionIsAnError) {
-  const auto model = setup::build_discretization(plate(true));
+  const auto model = setup::build_discretization(testing::floating_plate(true));
   evolution::RunState state(model);
   system::ConstrainedSystem sys = constrained_system(model);
   // The last column of cells: the traction acts on the nodes of its right edge.
@@ -176,7 +146,7 @@ TEST(CellMechanisms, PairHangingOnOneBondIsSolvedByTheDirectFallback) {
       for (const char* o : {"-ksp_type", "-pc_type"}) la::clear_option(o);
     }
   } options;
-  const auto model = setup::build_discretization(plate(false));
+  const auto model = setup::build_discretization(testing::floating_plate(false));
   evolution::RunState state(model);
   system::ConstrainedSystem sys = constrained_system(model);
   const Index A = cell_at(model, Vec3(2.1, 1.1, 0.0)), B = cell_at(model, Vec3(2.4, 1.1, 0.0));

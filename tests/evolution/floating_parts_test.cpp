@@ -30,14 +30,8 @@ namespace perimorph {
 namespace {
 
 using testing::break_and_support;
+using testing::constrained_system;
 using testing::jump_at_middle;
-
-/// The run's constrained system of a model at load factor 1 (applied forces,
-/// prescribed values).
-system::ConstrainedSystem constrained_system(const setup::Discretization& model) {
-  return system::ConstrainedSystem(model, system::assemble_stiffness(model).K, setup::build_dirichlet(model),
-                                   setup::build_external_force(model));
-}
 
 /// Assembles, constrains and fails every bond across x = 2.
 system::ConstrainedSystem cut_plate(const setup::Discretization& model, evolution::RunState& state) {

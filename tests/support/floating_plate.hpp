@@ -1,14 +1,16 @@
 #pragma once
 // Test support for the supports of parts cut free (evolution/part_support.hpp):
-// a fully non-local plate whose bonds across x = 2 are made to fail, and one
-// pass of the run's failure components. Used by
-// tests/evolution/floating_parts_test.cpp and, on a system spread over the
-// processes, tests/mpi/system_mpitest.cpp.
+// a fully non-local plate whose bonds across x = 2 are made to fail, its
+// system, and one pass of the run's failure components. Used by
+// tests/evolution/floating_parts_test.cpp and cell_mechanisms_test.cpp and,
+// on a system spread over the processes, tests/mpi/system_mpitest.cpp.
 
 #include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/evolution/part_support.hpp"
+#include "perimorph/setup/boundary_conditions.hpp"
 #include "perimorph/setup/discretization.hpp"
 #include "perimorph/system/constrained_system.hpp"
+#include "perimorph/system/stiffness.hpp"
 #include "support/cases.hpp"
 
 #include <gtest/gtest.h>
@@ -41,6 +43,13 @@ inline casefile::CaseConfig floating_plate(bool traction) {
   c.fracture.enabled = true;
   c.fracture.s_crit = 1e-6;
   return c;
+}
+
+/// The run's constrained system of a model at load factor 1 (applied forces,
+/// prescribed values), on one process.
+inline system::ConstrainedSystem constrained_system(const setup::Discretization& model) {
+  return system::ConstrainedSystem(model, system::assemble_stiffness(model).K, setup::build_dirichlet(model),
+                                   setup::build_external_force(model));
 }
 
 /// Cells right of x = 2 moved by (1, 0): only the bonds across x = 2 stretch.

@@ -145,37 +145,33 @@ FloatingParts find_floating_parts(const setup::Discretization& model, std::span<
   std::vector<char> is_held(static_cast<std::size_t>(dm.num_dofs()), 0);
   for (Index d : held) is_held[static_cast<std::size_t>(d)] = 1;
 
-  // A part's nodes relative to its centre, scaled by its size.
-  struct Frame {
-    Vec3 centre;
-    double size;
+  // The parts the held dofs do not fix (the parts share no node, so pinning
+  // one changes no other's span), and the force at their dofs, read once.
+  struct Floating {
+    const std::vector<Index>* nodes;
+    Vec3 centre;  ///< the nodes' positions are taken relative to it,
+    double size;  ///< scaled by the part's size
+    Span span;    ///< of the held dofs' rigid-body rows
   };
-  auto frame_of = [&](const std::vector<Index>& nodes) {
+  std::vector<Floating> floating;
+  std::vector<Index> floating_dofs;
+  for (const auto& nodes : members) {
     Vec3 centre = Vec3::Zero();
     for (Index a : nodes) centre += dm.node_coordinate(a);
     centre /= static_cast<double>(nodes.size());
     double size = 0.0;
     for (Index a : nodes) size = std::max(size, (dm.node_coordinate(a) - centre).norm());
-    return Frame{centre, size == 0.0 ? 1.0 : size};
-  };
-  auto held_span = [&](const std::vector<Index>& nodes, const Frame& fr) {
+    if (size == 0.0) size = 1.0;
     Span span;
     for (Index a : nodes)
       for (int d = 0; d < dim; ++d)
         if (is_held[static_cast<std::size_t>(a * dim + d)])
-          span.add(mode_row(dim, (dm.node_coordinate(a) - fr.centre) / fr.size, d), 1e-8);
-    return span;
-  };
-  // The parts the held dofs do not fix (the parts share no node, so pinning
-  // one changes no other's span), and the force at their dofs, read once.
-  std::vector<std::size_t> floating;
-  std::vector<Index> floating_dofs;
-  for (std::size_t p = 0; p < members.size(); ++p)
-    if (static_cast<int>(held_span(members[p], frame_of(members[p])).basis.size()) < nr) {
-      floating.push_back(p);
-      for (Index a : members[p])
-        for (int d = 0; d < dim; ++d) floating_dofs.push_back(a * dim + d);
-    }
+          span.add(mode_row(dim, (dm.node_coordinate(a) - centre) / size, d), 1e-8);
+    if (static_cast<int>(span.basis.size()) == nr) continue;
+    for (Index a : nodes)
+      for (int d = 0; d < dim; ++d) floating_dofs.push_back(a * dim + d);
+    floating.push_back({&nodes, centre, size, std::move(span)});
+  }
   std::sort(floating_dofs.begin(), floating_dofs.end());
   const std::vector<double> floating_force = force ? force(floating_dofs) : std::vector<double>{};
   auto force_at = [&](Index dof) {
@@ -184,11 +180,10 @@ FloatingParts find_floating_parts(const setup::Discretization& model, std::span<
   };
 
   FloatingParts out;
-  for (std::size_t p : floating) {
-    const std::vector<Index>& nodes = members[p];
-    const Frame fr = frame_of(nodes);
-    auto rel = [&](Index a) -> Vec3 { return (dm.node_coordinate(a) - fr.centre) / fr.size; };
-    Span span = held_span(nodes, fr);
+  for (Floating& part : floating) {
+    const std::vector<Index>& nodes = *part.nodes;
+    Span& span = part.span;
+    auto rel = [&](Index a) -> Vec3 { return (dm.node_coordinate(a) - part.centre) / part.size; };
     ++out.parts;
     // The free modes: the complement of the held rows' span.
     Span all = span;

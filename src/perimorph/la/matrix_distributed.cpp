@@ -6,6 +6,7 @@
 #include "perimorph/la/matrix.hpp"
 #include "perimorph/la/matrix_distributed_view.hpp"
 #include "perimorph/la/petsc_check.hpp"
+#include "perimorph/la/petsc_session.hpp"
 
 #include <fmt/format.h>
 
@@ -174,10 +175,11 @@ std::vector<Eigen::MatrixXd> Matrix::distributed_blocks(std::span<const Index> d
   auto global = [&](Index dof) {
     return d.to_distributed[static_cast<std::size_t>(dof / bs)] * bs + dof % bs;
   };
-  // Every block's owned rows, row-major, one after the other; zeros elsewhere.
+  // Every block's owned rows, row-major, one after the other; −0.0 elsewhere
+  // (la::from_owners: each row from its one owner, exactly).
   std::size_t total = 0;
   for (Index n : sizes) total += static_cast<std::size_t>(n * n);
-  std::vector<double> values(total, 0.0);
+  std::vector<double> values(total, -0.0);
   std::vector<PetscInt> cols;
   std::size_t at = 0, first = 0;
   for (Index n : sizes) {
@@ -193,9 +195,7 @@ std::vector<Eigen::MatrixXd> Matrix::distributed_blocks(std::span<const Index> d
     at += static_cast<std::size_t>(n * n);
     first += set.size();
   }
-  // One owner per row: the sum is that owner's value, exactly.
-  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM,
-                PETSC_COMM_WORLD);
+  values = from_owners(std::move(values));
   std::vector<Eigen::MatrixXd> out;
   out.reserve(sizes.size());
   at = 0;

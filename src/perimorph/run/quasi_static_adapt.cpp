@@ -60,7 +60,7 @@ void QuasiStaticRun::rebuild() {
   progress_->phase("remodel");
   const double before_energy = strain_energy();
   // Carried over whole (from the owners where a process holds its halo only).
-  const std::vector<double> u_whole = whole(state_.u), u_prev_whole = whole_of_owned(u_prev_);
+  const std::vector<double> u_whole = whole(state_.u), u_prev_whole = owned_dofs_.whole(u_prev_);
   auto next = std::make_unique<setup::Discretization>(setup::rebuild_for_alpha(*disc_, state_.alpha));
   system::Remodelled r =
       system::remodel(*system_, *disc_, *next, &state_.failed, setup::build_dirichlet(*next),

@@ -43,8 +43,8 @@ void QuasiStaticRun::save_checkpoint() {
   out.put<int>(summary_.preconditioner_rebuilds);
   out.put<int>(summary_.direct_fallback_solves);
   out.put<int>(summary_.most_null_pivots);
-  out.put_vector(whole_of_owned(u_prev_));
-  out.put_vector(whole_of_owned(fint_prev_));
+  out.put_vector(owned_dofs_.whole(u_prev_));
+  out.put_vector(owned_dofs_.whole(fint_prev_));
   state_.u = whole(state_.u);
   evolution::save_state(state_, out);
   out.tag("output");

@@ -115,8 +115,6 @@ class QuasiStaticRun {
   /// The whole vector of `v` (whole-length), which is exact at the dofs this
   /// process owns (collective): what a checkpoint and the summary hold.
   std::vector<double> whole(const std::vector<double>& v) const;
-  /// The whole vector of `v`, this process's entries at owned_dofs_ (collective).
-  std::vector<double> whole_of_owned(const std::vector<double>& v) const;
   /// init + Σ term(j) over owned_dofs_' entries j (every dof on one process,
   /// in dof order; spread over processes, each process's sum added in rank
   /// order; collective).

@@ -45,13 +45,6 @@ std::vector<double> QuasiStaticRun::whole(const std::vector<double>& v) const {
   return x.to_replicated();
 }
 
-std::vector<double> QuasiStaticRun::whole_of_owned(const std::vector<double>& v) const {
-  if (!halo_) return v;
-  la::Vector x = system_->make_vector();
-  x.assign_owned(owned_dofs_, v);
-  return x.to_replicated();
-}
-
 double QuasiStaticRun::add_over_dofs(double init, const std::function<double(std::size_t)>& term) const {
   return owned_dofs_.sum(init, term);
 }
