@@ -129,7 +129,7 @@ struct Setup {
     A.eliminate_dirichlet(bc.dofs, g, rhs_unit);
     A.set_spd();
     la::LinearSolver solver(model.config.solver.rtol, model.config.solver.max_iterations);
-    solver.set_operator(A, model.dofmap.node_coordinates(), kDim);
+    solver.set_operator(A, model.dofmap.node_coordinate_on(model.mesh), kDim);
     la::Vector x(dofs(), kDim);
     x.set_all(0.0);
     elastic = solver.solve(rhs_unit, x);
@@ -315,7 +315,7 @@ void BM_Solve(benchmark::State& state) {
     la::Vector x(s.dofs(), kDim);
     x.assign(s.u);
     const auto t0 = Clock::now();
-    solver.set_operator(c.sys.A(), s.model.dofmap.node_coordinates(), kDim);
+    solver.set_operator(c.sys.A(), s.model.dofmap.node_coordinate_on(s.model.mesh), kDim);
     const auto report = solver.solve(c.sys.rhs_unit(), x);
     state.SetIterationTime(seconds_since(t0));
     its += report.iterations;

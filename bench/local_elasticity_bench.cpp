@@ -195,7 +195,7 @@ void solve(benchmark::State& state, Solver s) {
     state.ResumeTiming();
     try {
       la::LinearSolver solver(kRtol, kMaxIterations);
-      solver.set_operator(A, p.dofmap.node_coordinates(), kDim);
+      solver.set_operator(A, p.dofmap.node_coordinate_on(p.mesh), kDim);
       report = solver.solve(rhs, u);
     } catch (const std::exception& e) {
       state.SkipWithError(e.what());

@@ -165,7 +165,7 @@ int main(int argc, char** argv) {
     // error of the stiffness' scale).
     u.assign(g);
     la::LinearSolver solver(config.solver.rtol, config.solver.max_iterations);
-    solver.set_operators(A, P, model.dofmap.node_coordinates(), 3);
+    solver.set_operators(A, P, model.dofmap.node_coordinate_on(model.mesh), 3);
     out.push_back(phase("operator", clock.lap()));
     const la::SolveReport rep = solver.solve(rhs, u);
     out.push_back(phase("solve", clock.lap()));

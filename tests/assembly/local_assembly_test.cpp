@@ -160,7 +160,7 @@ TEST(AssemblyLocal, BodyForceTotalsAndMoments) {
     for (Index n = 0; n < dm.num_nodes(); ++n)
       for (int d = 0; d < 3; ++d) {
         total[d] += F[static_cast<std::size_t>(3 * n + d)];
-        moment_x[d] += F[static_cast<std::size_t>(3 * n + d)] * dm.node_coordinate(n).x();
+        moment_x[d] += F[static_cast<std::size_t>(3 * n + d)] * dm.node_coordinate(m, n).x();
       }
     EXPECT_NEAR((total - b * volume).norm(), 0.0, 1e-13);
     // Σ_a f_a x_a = ∫ b x dV = b · volume · centroid_x.
@@ -211,7 +211,7 @@ TEST(AssemblyLocal, TractionTotalsEqualTractionTimesArea) {
       for (int d = 0; d < 3; ++d) {
         const double f = F[static_cast<std::size_t>(3 * n + d)];
         total[d] += f;
-        if (dm.node_coordinate(n).x() != 2.0) {
+        if (dm.node_coordinate(m, n).x() != 2.0) {
           EXPECT_EQ(f, 0.0) << "load off the face at node " << n;
         }
       }

@@ -91,7 +91,8 @@ std::pair<double, double> errors(const assembly::LocalSpace& space, const Eigen:
     fem::ElementVector<D> ue;
     const auto nodes = space.dofmap.cell_nodes(c);
     for (int a = 0; a < fem::q1_nodes<D>; ++a) {
-      X.col(a) = space.dofmap.node_coordinate(nodes[static_cast<std::size_t>(a)]).template head<D>();
+      X.col(a) =
+          space.dofmap.node_coordinate(space.mesh, nodes[static_cast<std::size_t>(a)]).template head<D>();
       for (int d = 0; d < D; ++d)
         ue[a * D + d] = u[static_cast<std::size_t>(nodes[static_cast<std::size_t>(a)] * D + d)];
     }

@@ -473,7 +473,7 @@ double uniform_strain_energy(const casefile::CaseConfig& c) {
   Eigen::VectorXd u(K.rows());
   const int dim = c.dim();
   for (Index a = 0; a < m.dofmap.num_nodes(); ++a) {
-    const Vec3 ua = G * m.dofmap.node_coordinate(a);
+    const Vec3 ua = G * m.dofmap.node_coordinate(m.mesh, a);
     for (int d = 0; d < dim; ++d) u[a * dim + d] = ua[d];
   }
   return 0.5 * u.dot(K * u);

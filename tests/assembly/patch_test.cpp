@@ -54,7 +54,7 @@ void run_patch_test(int dim, const Voigt6& C3, fem::PlaneMode mode) {
   const auto u = testing::solve_local({m, dm, rule, 1.0}, C, m.node_sets.at("boundary"), exact, F);
   double max_err = 0.0, max_u = 0.0;
   for (Index n = 0; n < dm.num_nodes(); ++n) {
-    const Vec3 ue = exact(dm.node_coordinate(n));
+    const Vec3 ue = exact(dm.node_coordinate(m, n));
     for (int d = 0; d < dim; ++d) {
       max_err = std::max(max_err, std::abs(u[static_cast<std::size_t>(n * dim + d)] - ue[d]));
       max_u = std::max(max_u, std::abs(ue[d]));

@@ -45,7 +45,8 @@ std::size_t kill_point(const setup::Discretization& model, Index c, int q, evolu
   const auto& dm = model.dofmap;
   std::vector<double> u(static_cast<std::size_t>(dm.num_dofs()), 0.0);
   for (Index a = 0; a < dm.num_nodes(); ++a)
-    for (int d = 0; d < 2; ++d) u[static_cast<std::size_t>(a * 2 + d)] = 1e-3 * dm.node_coordinate(a)[d];
+    for (int d = 0; d < 2; ++d)
+      u[static_cast<std::size_t>(a * 2 + d)] = 1e-3 * dm.node_coordinate(model.mesh, a)[d];
   evolution::BondFailure failure(model);
   std::vector<assembly::StretchedBond> bonds = assembly::bonds_over(failure.space(state), u, 0.0);
   std::erase_if(bonds, [&](const assembly::StretchedBond& b) {
@@ -153,7 +154,8 @@ TEST(CellMechanisms, PairHangingOnOneBondIsSolvedByTheDirectFallback) {
   const auto& dm = model.dofmap;
   std::vector<double> u(static_cast<std::size_t>(dm.num_dofs()), 0.0);
   for (Index a = 0; a < dm.num_nodes(); ++a)
-    for (int d = 0; d < 2; ++d) u[static_cast<std::size_t>(a * 2 + d)] = 1e-3 * dm.node_coordinate(a)[d];
+    for (int d = 0; d < 2; ++d)
+      u[static_cast<std::size_t>(a * 2 + d)] = 1e-3 * dm.node_coordinate(model.mesh, a)[d];
   evolution::BondFailure failure(model);
   std::vector<assembly::StretchedBond> bonds = assembly::bonds_over(failure.space(state), u, 0.0);
   auto in_pair = [&](Index c) { return c == A || c == B; };

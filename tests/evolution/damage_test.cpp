@@ -274,7 +274,7 @@ TEST(LocalDamageComponent, BondsFailOnlyBetweenPointsAtCriticalDamage) {
   evolution::RunState state(disc);
   // A kink across x = 2.03: the bonds across it stretch most.
   for (Index a = 0; a < disc.dofmap.num_nodes(); ++a) {
-    const Vec3 x = disc.dofmap.node_coordinate(a);
+    const Vec3 x = disc.dofmap.node_coordinate(disc.mesh, a);
     state.u[static_cast<std::size_t>(a * 2)] = 0.5e-3 * x.x() + (x.x() > 2.03 ? 2e-3 : 0.0);
   }
   evolution::BondFailure failure(disc);

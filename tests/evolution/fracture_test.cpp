@@ -103,7 +103,7 @@ TEST(Fracture, IncrementalDowndateEqualsReassembly) {
     // A displacement with a kink in the middle: the bonds across it stretch most.
     std::vector<double> u(static_cast<std::size_t>(n), 0.0);
     for (Index a = 0; a < model.dofmap.num_nodes(); ++a) {
-      const Vec3 x = model.dofmap.node_coordinate(a);
+      const Vec3 x = model.dofmap.node_coordinate(model.mesh, a);
       const double middle = at_edge ? 3.93 : dim == 1 ? 10.03 : 2.03;
       u[static_cast<std::size_t>(a * dim)] = 0.5e-3 * x.x() + (x.x() > middle ? 2e-3 : 0.0);
     }

@@ -86,7 +86,7 @@ TEST(LaNonlinearSolver, StepsByGmresWithTheRunsPreconditionerFindTheSameRoot) {
     }
   A.finalize();
   la::LinearSolver linear(1e-10, 100);
-  const std::vector<Vec3> nodes(3, Vec3::Zero());
+  const la::NodeCoordinate nodes = [](Index) -> Vec3 { return Vec3::Zero(); };
   linear.set_operator(A, nodes, 1);
   la::clear_option("-pc_type");
   la::clear_option("-ksp_type");

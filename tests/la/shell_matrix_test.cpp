@@ -65,7 +65,7 @@ struct LaShellMatrix : ::testing::Test {
   void TearDown() override {
     for (const char* o : {"-ksp_type", "-pc_type"}) la::clear_option(o);
   }
-  std::vector<Vec3> nodes = std::vector<Vec3>(n, Vec3::Zero());
+  const la::NodeCoordinate nodes = [](Index) -> Vec3 { return Vec3::Zero(); };
 };
 
 TEST_F(LaShellMatrix, KrylovOnTheShellReachesTheAssembledSolution) {

@@ -118,7 +118,7 @@ TEST_P(Distributed2D3D, DirichletSolveEqualsTheSerialOne) {
   A.eliminate_dirichlet(bc.dofs, x, rhs);
   A.set_spd();
   la::LinearSolver solver(1e-12, 1000);
-  solver.set_operator(A, m.dofmap.node_coordinates(), m.dim());
+  solver.set_operator(A, m.dofmap.node_coordinate_on(m.mesh), m.dim());
   const auto report = solver.solve(rhs, u);
   EXPECT_LT(report.relative_residual, 1e-11) << report.iterations << " iterations";
   const auto got = u.to_replicated();
@@ -370,7 +370,7 @@ TEST_P(Distributed2D3D, BondsOverAThresholdAreDecidedOnceAndGatheredInTheSerialO
   // A displacement with stretches of every size: u = x² along x (and a shear).
   std::vector<double> u(static_cast<std::size_t>(m.dofmap.num_dofs()), 0.0);
   for (Index node = 0; node < m.dofmap.num_nodes(); ++node) {
-    const Vec3 x = m.dofmap.node_coordinate(node);
+    const Vec3 x = m.dofmap.node_coordinate(m.mesh, node);
     u[static_cast<std::size_t>(node * m.dim())] = 1e-3 * x.x() * x.x();
     u[static_cast<std::size_t>(node * m.dim() + 1)] = 1e-4 * x.x() * x.y();
   }

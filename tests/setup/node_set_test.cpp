@@ -193,7 +193,7 @@ TEST(DriverNodeSet, PinRemovesTheRigidBodyMotion) {
   ASSERT_EQ(sets.size(), 2u);
   EXPECT_EQ(sets[1].name, "pin");
   ASSERT_EQ(sets[1].dof_nodes.size(), 1u);
-  EXPECT_EQ(model.dofmap.node_coordinate(sets[1].dof_nodes[0]), Vec3(24, 0, 0));
+  EXPECT_EQ(model.dofmap.node_coordinate(model.mesh, sets[1].dof_nodes[0]), Vec3(24, 0, 0));
 
   const auto dir = std::filesystem::temp_directory_path() / "perimorph_test_node_set_pin";
   std::filesystem::remove_all(dir);

@@ -59,7 +59,7 @@ inline std::vector<double> jump_at_middle(const setup::Discretization& model) {
   for (Index c = 0; c < model.mesh.num_cells(); ++c) {
     const auto nodes = dm.cell_nodes(c);
     Vec3 centre = Vec3::Zero();
-    for (Index a : nodes) centre += dm.node_coordinate(a);
+    for (Index a : nodes) centre += dm.node_coordinate(model.mesh, a);
     if (centre.x() / static_cast<double>(nodes.size()) > 2.0)
       for (Index a : nodes) u[static_cast<std::size_t>(a * 2)] = 1.0;
   }
@@ -72,7 +72,7 @@ inline void stretch_last_column(const setup::Discretization& model, std::vector<
   for (Index cell = 0; cell < model.mesh.num_cells(); ++cell)
     if (model.mesh.cell_centroid(cell).x() > 3.75)
       for (Index a : model.dofmap.cell_nodes(cell)) {
-        const double d = model.dofmap.node_coordinate(a).x() - 3.75;
+        const double d = model.dofmap.node_coordinate(model.mesh, a).x() - 3.75;
         u[static_cast<std::size_t>(a * 2)] = d * d;
       }
 }

@@ -30,7 +30,7 @@ inline std::vector<double> solve_local(const assembly::LocalSpace& space, const 
   std::vector<Index> dofs;
   std::vector<double> gv(static_cast<std::size_t>(n), 0.0);
   for (Index node : space.dofmap.dof_nodes_of_mesh_nodes(fixed_nodes)) {
-    const Vec3 v = g(space.dofmap.node_coordinate(node));
+    const Vec3 v = g(space.dofmap.node_coordinate(space.mesh, node));
     for (int d = 0; d < dim; ++d) {
       dofs.push_back(node * dim + d);
       gv[static_cast<std::size_t>(node * dim + d)] = v[d];
@@ -42,7 +42,7 @@ inline std::vector<double> solve_local(const assembly::LocalSpace& space, const 
   b.assign(F);
   K.eliminate_dirichlet(dofs, x, b);
   la::LinearSolver solver(rtol, 20000);
-  solver.set_operator(K, space.dofmap.node_coordinates(), dim);
+  solver.set_operator(K, space.dofmap.node_coordinate_on(space.mesh), dim);
   la::Vector u(n, dim);
   solver.solve(b, u);
   return u.to_std();

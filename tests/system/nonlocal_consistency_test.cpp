@@ -113,7 +113,7 @@ std::pair<double, double> uniform_strain_residual(
   Mat3 G;
   G << 1e-3, 2e-4, 0, 4e-4, -5e-4, 1e-4, 0, 3e-4, 2e-4;
   for (Index a = 0; a < model.dofmap.num_nodes(); ++a) {
-    const Vec3 ua = G * model.dofmap.node_coordinate(a);
+    const Vec3 ua = G * model.dofmap.node_coordinate(model.mesh, a);
     for (int d = 0; d < dim; ++d) uv[static_cast<std::size_t>(a * dim + d)] = ua[d];
   }
   la::Vector u(model.dofmap.num_dofs(), dim), r(model.dofmap.num_dofs(), dim);
@@ -123,7 +123,7 @@ std::pair<double, double> uniform_strain_residual(
   double interior = 0.0, boundary = 0.0;
   int interior_nodes = 0;
   for (Index a = 0; a < model.dofmap.num_nodes(); ++a) {
-    const Vec3 x = model.dofmap.node_coordinate(a);
+    const Vec3 x = model.dofmap.node_coordinate(model.mesh, a);
     double dist = 1.0;
     for (int d = 0; d < dim; ++d) dist = std::min({dist, x[d], 1.0 - x[d]});
     interior_nodes += dist > delta + h + 1e-12 ? 1 : 0;

@@ -109,11 +109,11 @@ TEST(Remodel, CarriedDisplacementIsTheSameField) {
   std::vector<double> u(static_cast<std::size_t>(before.dofmap.num_dofs()));
   for (Index n = 0; n < before.dofmap.num_nodes(); ++n)
     for (int k = 0; k < 2; ++k)
-      u[static_cast<std::size_t>(2 * n + k)] = field(before.dofmap.node_coordinate(n), k);
+      u[static_cast<std::size_t>(2 * n + k)] = field(before.dofmap.node_coordinate(before.mesh, n), k);
   const auto v = system::transfer_dof_vector(before, after, u);
   for (Index n = 0; n < after.dofmap.num_nodes(); ++n)
     for (int k = 0; k < 2; ++k)
-      ASSERT_EQ(v[static_cast<std::size_t>(2 * n + k)], field(after.dofmap.node_coordinate(n), k))
+      ASSERT_EQ(v[static_cast<std::size_t>(2 * n + k)], field(after.dofmap.node_coordinate(after.mesh, n), k))
           << "node " << n;
 }
 

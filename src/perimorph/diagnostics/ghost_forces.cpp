@@ -19,7 +19,7 @@ GhostForces compute_ghost_forces(const setup::Discretization& model, const Mat3&
   const Index n = dm.num_dofs();
   std::vector<double> uv(static_cast<std::size_t>(n));
   for (Index a = 0; a < dm.num_nodes(); ++a) {
-    const Vec3 ua = strain * dm.node_coordinate(a);
+    const Vec3 ua = strain * dm.node_coordinate(model.mesh, a);
     for (int d = 0; d < dim; ++d) uv[static_cast<std::size_t>(a * dim + d)] = ua[d];
   }
   // Spread over the processes of a distributed run (owner computes), the
@@ -61,7 +61,7 @@ std::string write_ghost_forces(const setup::Discretization& model, const GhostFo
   for (int d = 0; d < dim; ++d) cols.push_back(fmt::format("density_{}", axes[d]));
   io::CsvTable csv(csv_path, cols);
   for (Index a = 0; a < dm.num_nodes(); ++a) {
-    const Vec3& x = dm.node_coordinate(a);
+    const Vec3 x = dm.node_coordinate(model.mesh, a);
     std::vector<double> row{static_cast<double>(a),
                             x.x(),
                             x.y(),
@@ -73,7 +73,7 @@ std::string write_ghost_forces(const setup::Discretization& model, const GhostFo
     csv.add_row(row);
   }
   io::UnstructuredGrid grid;
-  grid.points = dm.node_coordinates();
+  grid.points = dm.node_coordinates(model.mesh);
   grid.nodes_per_cell = model.mesh.nodes_per_cell();
   grid.cell_type = dim == 1 ? io::VtkCell::line : dim == 2 ? io::VtkCell::quad : io::VtkCell::hexahedron;
   bool all_q1 = true;

@@ -25,9 +25,9 @@ ModelMemory model_memory(const setup::Discretization& model) {
   const auto cells = static_cast<std::size_t>(dm.num_cells());
   std::size_t cell_nodes = 0;
   for (Index c = 0; c < dm.num_cells(); ++c) cell_nodes += dm.cell_nodes(c).size();
-  // Offsets and cell nodes, a flag per cell, a coordinate and a mesh node per dof node.
+  // Offsets and cell nodes, a flag per cell, a mesh node (or centroid's cell) per dof node.
   m.dofs = (cells + 1 + cell_nodes) * sizeof(Index) + cells * sizeof(dofs::Continuity) +
-           static_cast<std::size_t>(dm.num_nodes()) * (sizeof(Vec3) + sizeof(Index));
+           static_cast<std::size_t>(dm.num_nodes()) * sizeof(Index);
   m.stiffness = model.stiffness.bytes();
   if (model.nonlocal) {
     const auto& nl = *model.nonlocal;

@@ -22,8 +22,7 @@ DofMap::DofMap(const mesh::Mesh& mesh, int block_size, std::span<const Continuit
       for (Index n : mesh.cell(c)) cg_node[static_cast<std::size_t>(n)] = 0;
   for (Index n = 0; n < mesh.num_nodes(); ++n)
     if (cg_node[static_cast<std::size_t>(n)] == 0) {
-      cg_node[static_cast<std::size_t>(n)] = static_cast<Index>(node_coords_.size());
-      node_coords_.push_back(mesh.node(n));
+      cg_node[static_cast<std::size_t>(n)] = static_cast<Index>(mesh_node_.size());
       mesh_node_.push_back(n);
     }
 
@@ -32,9 +31,8 @@ DofMap::DofMap(const mesh::Mesh& mesh, int block_size, std::span<const Continuit
   cell_nodes_.reserve(mesh.connectivity().size());
   for (Index c = 0; c < ncells; ++c) {
     if (continuity_[static_cast<std::size_t>(c)] == Continuity::discontinuous_constant) {
-      cell_nodes_.push_back(static_cast<Index>(node_coords_.size()));
-      node_coords_.push_back(mesh.cell_centroid(c));
-      mesh_node_.push_back(-1);
+      cell_nodes_.push_back(static_cast<Index>(mesh_node_.size()));
+      mesh_node_.push_back(-2 - c);
       offsets_.push_back(static_cast<Index>(cell_nodes_.size()));
       continue;
     }
@@ -42,13 +40,24 @@ DofMap::DofMap(const mesh::Mesh& mesh, int block_size, std::span<const Continuit
       if (continuity_[static_cast<std::size_t>(c)] == Continuity::continuous) {
         cell_nodes_.push_back(cg_node[static_cast<std::size_t>(n)]);
       } else {
-        cell_nodes_.push_back(static_cast<Index>(node_coords_.size()));
-        node_coords_.push_back(mesh.node(n));
+        cell_nodes_.push_back(static_cast<Index>(mesh_node_.size()));
         mesh_node_.push_back(n);
       }
     }
     offsets_.push_back(static_cast<Index>(cell_nodes_.size()));
   }
+}
+
+Vec3 DofMap::node_coordinate(const mesh::Mesh& mesh, Index n) const {
+  const Index m = stored_mesh_node(n);
+  return m >= 0 ? mesh.node(m) : mesh.cell_centroid(-2 - m);
+}
+
+std::vector<Vec3> DofMap::node_coordinates(const mesh::Mesh& mesh) const {
+  std::vector<Vec3> out;
+  out.reserve(mesh_node_.size());
+  for (Index n = 0; n < num_nodes(); ++n) out.push_back(node_coordinate(mesh, n));
+  return out;
 }
 
 std::vector<Index> DofMap::dof_nodes_of_mesh_nodes(std::span<const Index> mesh_nodes) const {

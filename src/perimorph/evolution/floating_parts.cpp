@@ -157,16 +157,16 @@ FloatingParts find_floating_parts(const setup::Discretization& model, std::span<
   std::vector<Index> floating_dofs;
   for (const auto& nodes : members) {
     Vec3 centre = Vec3::Zero();
-    for (Index a : nodes) centre += dm.node_coordinate(a);
+    for (Index a : nodes) centre += dm.node_coordinate(model.mesh, a);
     centre /= static_cast<double>(nodes.size());
     double size = 0.0;
-    for (Index a : nodes) size = std::max(size, (dm.node_coordinate(a) - centre).norm());
+    for (Index a : nodes) size = std::max(size, (dm.node_coordinate(model.mesh, a) - centre).norm());
     if (size == 0.0) size = 1.0;
     Span span;
     for (Index a : nodes)
       for (int d = 0; d < dim; ++d)
         if (is_held[static_cast<std::size_t>(a * dim + d)])
-          span.add(mode_row(dim, (dm.node_coordinate(a) - centre) / size, d), 1e-8);
+          span.add(mode_row(dim, (dm.node_coordinate(model.mesh, a) - centre) / size, d), 1e-8);
     if (static_cast<int>(span.basis.size()) == nr) continue;
     for (Index a : nodes)
       for (int d = 0; d < dim; ++d) floating_dofs.push_back(a * dim + d);
@@ -183,7 +183,7 @@ FloatingParts find_floating_parts(const setup::Discretization& model, std::span<
   for (Floating& part : floating) {
     const std::vector<Index>& nodes = *part.nodes;
     Span& span = part.span;
-    auto rel = [&](Index a) -> Vec3 { return (dm.node_coordinate(a) - part.centre) / part.size; };
+    auto rel = [&](Index a) -> Vec3 { return (dm.node_coordinate(model.mesh, a) - part.centre) / part.size; };
     ++out.parts;
     // The free modes: the complement of the held rows' span.
     Span all = span;
@@ -201,10 +201,10 @@ FloatingParts find_floating_parts(const setup::Discretization& model, std::span<
             scale += std::abs(F) * row.norm();
           }
         if (scale > 0.0 && std::abs(work) > 1e-9 * scale) {
-          Vec3 lo = dm.node_coordinate(nodes.front()), hi = lo;
+          Vec3 lo = dm.node_coordinate(model.mesh, nodes.front()), hi = lo;
           for (Index a : nodes) {
-            lo = lo.cwiseMin(dm.node_coordinate(a));
-            hi = hi.cwiseMax(dm.node_coordinate(a));
+            lo = lo.cwiseMin(dm.node_coordinate(model.mesh, a));
+            hi = hi.cwiseMax(dm.node_coordinate(model.mesh, a));
           }
           throw Error(
               fmt::format("bond failures have cut free a part of {} nodes (between ({:g}, {:g}, {:g}) and "

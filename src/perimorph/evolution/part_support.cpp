@@ -47,7 +47,7 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
   for (std::size_t k = 0; k < detached_.size(); ++k) {
     const Index d = detached_[k];
     if (const double f = detached_force[k]; f != 0.0) {
-      const Vec3 x = disc_->dofmap.node_coordinate(d / dim);
+      const Vec3 x = disc_->dofmap.node_coordinate(disc_->mesh, d / dim);
       throw Error(
           fmt::format("bond failures or damage have left the node at ({:g}, {:g}, {:g}) with no stiffness in "
                       "direction {} while an applied force {:g} acts on it: there is no quasi-static "

@@ -96,9 +96,10 @@ namespace {
 /// Rigid-body modes from the dof-node coordinates (block size = dim), as the
 /// near-null space of M (GAMG's coarse spaces); distributed (`d` not null),
 /// those of the nodes this process owns, in the distributed order.
-void attach_rigid_body_modes(PetscMatHandle M, std::span<const Vec3> node_coordinates, int dim,
+void attach_rigid_body_modes(PetscMatHandle M, Index rows, const NodeCoordinate& node_coordinate, int dim,
                              const Distribution* d) {
-  const auto owned = d != nullptr ? static_cast<std::size_t>(d->owned_nodes()) : node_coordinates.size();
+  const Index nodes = d != nullptr ? d->num_nodes() : rows / dim;
+  const auto owned = static_cast<std::size_t>(d != nullptr ? d->owned_nodes() : nodes);
   Vec coords = nullptr;
   PM_PETSC(VecCreate(PETSC_COMM_WORLD, &coords));
   PM_PETSC(VecSetSizes(coords, static_cast<PetscInt>(owned) * dim, PETSC_DECIDE));
@@ -106,14 +107,14 @@ void attach_rigid_body_modes(PetscMatHandle M, std::span<const Vec3> node_coordi
   PM_PETSC(VecSetType(coords, VECSTANDARD));
   PetscScalar* c = nullptr;
   PM_PETSC(VecGetArray(coords, &c));
-  for (std::size_t n = 0; n < node_coordinates.size(); ++n) {
-    std::size_t at = n;
+  for (Index n = 0; n < nodes; ++n) {
+    auto at = static_cast<std::size_t>(n);
     if (d != nullptr) {
-      if (!d->owns(static_cast<Index>(n))) continue;
-      at = static_cast<std::size_t>(d->to_distributed[n] - d->begin);
+      if (!d->owns(n)) continue;
+      at = static_cast<std::size_t>(d->to_distributed[static_cast<std::size_t>(n)] - d->begin);
     }
-    for (int k = 0; k < dim; ++k)
-      c[at * static_cast<std::size_t>(dim) + static_cast<std::size_t>(k)] = node_coordinates[n][k];
+    const Vec3 x = node_coordinate(n);
+    for (int k = 0; k < dim; ++k) c[at * static_cast<std::size_t>(dim) + static_cast<std::size_t>(k)] = x[k];
   }
   PM_PETSC(VecRestoreArray(coords, &c));
   MatNullSpace nullsp = nullptr;
@@ -125,19 +126,19 @@ void attach_rigid_body_modes(PetscMatHandle M, std::span<const Vec3> node_coordi
 
 }  // namespace
 
-void LinearSolver::set_operator(Matrix& A, std::span<const Vec3> node_coordinates, int dim) {
+void LinearSolver::set_operator(Matrix& A, const NodeCoordinate& node_coordinate, int dim) {
   mult_ = [&A](const Vector& x, Vector& y) { A.mult(x, y); };
   op_ = A.handle();
   if (direct_) PM_PETSC(KSPSetOperators(direct_, op_, op_));
-  attach_rigid_body_modes(A.handle(), node_coordinates, dim, A.distribution().get());
+  attach_rigid_body_modes(A.handle(), A.rows(), node_coordinate, dim, A.distribution().get());
   PM_PETSC(KSPSetOperators(ksp_, A.handle(), A.handle()));
 }
 
-void LinearSolver::set_operators(const ShellMatrix& A, Matrix& P, std::span<const Vec3> node_coordinates,
+void LinearSolver::set_operators(const ShellMatrix& A, Matrix& P, const NodeCoordinate& node_coordinate,
                                  int dim) {
   mult_ = [&A](const Vector& x, Vector& y) { A.mult(x, y); };
   op_ = nullptr;  // no entries: no direct fallback
-  attach_rigid_body_modes(P.handle(), node_coordinates, dim, P.distribution().get());
+  attach_rigid_body_modes(P.handle(), P.rows(), node_coordinate, dim, P.distribution().get());
   PM_PETSC(KSPSetOperators(ksp_, A.handle(), P.handle()));
 }
 

@@ -29,6 +29,10 @@ struct SolveReport {
   int null_pivots = -1;
 };
 
+/// The coordinate of a dof node (assembly numbering), for the rigid-body
+/// near-null space; asked only at the nodes this process owns.
+using NodeCoordinate = std::function<Vec3(Index node)>;
+
 class LinearSolver {
  public:
   LinearSolver(double rtol, int max_iterations);
@@ -38,11 +42,11 @@ class LinearSolver {
 
   /// Sets the operator (and preconditioner matrix). Call again after the
   /// matrix values change; the near-null space is attached to A.
-  void set_operator(Matrix& A, std::span<const Vec3> node_coordinates, int dim);
+  void set_operator(Matrix& A, const NodeCoordinate& node_coordinate, int dim);
   /// A matrix-free operator A, preconditioned from the assembled matrix P
   /// (KSPSetOperators(A, P): GAMG, Jacobi … are built on P, which carries the
   /// near-null space). Both are kept alive by the caller.
-  void set_operators(const ShellMatrix& A, Matrix& P, std::span<const Vec3> node_coordinates, int dim);
+  void set_operators(const ShellMatrix& A, Matrix& P, const NodeCoordinate& node_coordinate, int dim);
   /// Solves A x = b starting from x. With -ksp_reuse_preconditioner, the
   /// preconditioner is rebuilt for the present matrix before a solve when the
   /// last one needed more than 2 n + 10 iterations, n those of the first

@@ -160,12 +160,11 @@ io::UnstructuredGrid RunOutput::increment_grid(const setup::Discretization& mode
   for (Index c : cells)
     for (Index n : dm.cell_nodes(c)) point_of_node[static_cast<std::size_t>(n)] = 0;
   std::vector<Index> point_dof_node;
-  const std::vector<Vec3> coordinates = dm.node_coordinates();
   for (Index n = 0; n < dm.num_nodes(); ++n) {
     if (point_of_node[static_cast<std::size_t>(n)] == unused) continue;
     point_of_node[static_cast<std::size_t>(n)] = static_cast<Index>(point_dof_node.size());
     point_dof_node.push_back(n);
-    grid.points.push_back(coordinates[static_cast<std::size_t>(n)]);
+    grid.points.push_back(dm.node_coordinate(model.mesh, n));
   }
   for (Index c : cells) {
     const auto nodes = dm.cell_nodes(c);

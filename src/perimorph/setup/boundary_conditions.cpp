@@ -71,7 +71,7 @@ DirichletData build_dirichlet(const Discretization& model) {
   std::map<Index, double> prescribed;
   for (const auto& bc : model.config.dirichlet) {
     for (Index n : set_dof_nodes(model, bc.set, bc.where)) {
-      const Vec3& x = model.dofmap.node_coordinate(n);
+      const Vec3 x = model.dofmap.node_coordinate(model.mesh, n);
       for (int c = 0; c < dim; ++c)
         if (bc.constrained[static_cast<std::size_t>(c)])
           prescribed[n * dim + c] = bc.value[c] + bc.gradient.row(c).dot(x);

@@ -146,11 +146,11 @@ void ConstrainedSystem::attach_solver() {
 
 void ConstrainedSystem::operator_changed() {
   if (!solver_) return;
+  const la::NodeCoordinate at = model_.dofmap.node_coordinate_on(model_.mesh);
   if (free_)
-    solver_->set_operators(free_->A, free_->stiffness.preconditioner, model_.dofmap.node_coordinates(),
-                           model_.dim());
+    solver_->set_operators(free_->A, free_->stiffness.preconditioner, at, model_.dim());
   else
-    solver_->set_operator(A_, model_.dofmap.node_coordinates(), model_.dim());
+    solver_->set_operator(A_, at, model_.dim());
 }
 
 void ConstrainedSystem::downdate(std::span<const Index> dofs, std::span<const double> block) {
