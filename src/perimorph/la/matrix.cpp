@@ -124,14 +124,19 @@ void Matrix::add(std::span<const Index> rows, std::span<const Index> cols, std::
       add_distributed(rows, cols, values);
       return;
     }
-    // Rows of other processes skipped (negative), as add_distributed does.
+    // Rows of other processes skipped (negative), as add_distributed does;
+    // the indices distributed.
     PetscInt bs = 1;
     PM_PETSC(MatGetBlockSize(m_, &bs));
-    std::vector<PetscInt> owned(rows.begin(), rows.end());
-    for (PetscInt& r : owned)
-      if (r >= 0 && !distribution_->owns(r / bs)) r = -1;
-    PM_PETSC(MatSetValuesLocal(m_, static_cast<PetscInt>(owned.size()), owned.data(),
-                               static_cast<PetscInt>(cols.size()), cols.data(), values.data(), ADD_VALUES));
+    std::vector<PetscInt> owned(rows.size()), global_cols(cols.size());
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      owned[i] =
+          rows[i] >= 0 && distribution_->owns(rows[i] / bs) ? distribution_->global_dof(rows[i], bs) : -1;
+    for (std::size_t j = 0; j < cols.size(); ++j)
+      global_cols[j] = cols[j] >= 0 ? distribution_->global_dof(cols[j], bs) : -1;
+    PM_PETSC(MatSetValues(m_, static_cast<PetscInt>(owned.size()), owned.data(),
+                          static_cast<PetscInt>(global_cols.size()), global_cols.data(), values.data(),
+                          ADD_VALUES));
     return;
   }
   if (!acquire_view()) {
@@ -194,14 +199,14 @@ void Matrix::mult(const Vector& x, Vector& y) const {
 void Matrix::eliminate_dirichlet(std::span<const Index> rows, const Vector& x, Vector& rhs, double diagonal) {
   release_view();
   if (distribution_) {
-    // Each process names the rows it owns (assembly numbering, mapped).
+    // Each process names the rows it owns (distributed numbering).
     PetscInt bs = 1;
     PM_PETSC(MatGetBlockSize(m_, &bs));
     std::vector<PetscInt> owned;
     for (Index r : rows)
-      if (distribution_->owns(r / bs)) owned.push_back(r);
-    PM_PETSC(MatZeroRowsColumnsLocal(m_, static_cast<PetscInt>(owned.size()), owned.data(), diagonal,
-                                     x.read_handle(), rhs.handle()));
+      if (distribution_->owns(r / bs)) owned.push_back(distribution_->global_dof(r, bs));
+    PM_PETSC(MatZeroRowsColumns(m_, static_cast<PetscInt>(owned.size()), owned.data(), diagonal,
+                                x.read_handle(), rhs.handle()));
     return;
   }
   PM_PETSC(MatZeroRowsColumns(m_, static_cast<PetscInt>(rows.size()), rows.data(), diagonal, x.read_handle(),

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 
 namespace perimorph::la {
 
@@ -36,19 +37,19 @@ Matrix::Matrix(const assembly::SparsityPattern& pattern, std::shared_ptr<const D
     for (Index c : pattern.row(r)) ++(d.owns(c) ? dnnz : onnz)[k];
   }
   PM_PETSC(MatXAIJSetPreallocation(m_, bs, dnnz.data(), onnz.data(), nullptr, nullptr));
-  ISLocalToGlobalMapping map = nullptr;
-  PM_PETSC(ISLocalToGlobalMappingCreate(PETSC_COMM_SELF, static_cast<PetscInt>(bs), static_cast<PetscInt>(nb),
-                                        d.to_distributed.data(), PETSC_COPY_VALUES, &map));
-  PM_PETSC(MatSetLocalToGlobalMapping(m_, map, map));
-  PM_PETSC(ISLocalToGlobalMappingDestroy(&map));
-  // The whole pattern of the owned rows is stored (explicit zeros), as above.
+  // The whole pattern of the owned rows is stored (explicit zeros), as above;
+  // the indices translated here (no local-to-global mapping held by PETSc).
   std::vector<PetscScalar> zeros;
+  std::vector<PetscInt> cols;
   for (Index r : owned_rows) {
-    const auto cols = pattern.row(r);
+    const auto pattern_cols = pattern.row(r);
+    cols.resize(pattern_cols.size());
+    for (std::size_t j = 0; j < cols.size(); ++j)
+      cols[j] = d.to_distributed[static_cast<std::size_t>(pattern_cols[j])];
     zeros.assign(cols.size() * static_cast<std::size_t>(bs * bs), 0.0);
-    const PetscInt row = r;
-    PM_PETSC(MatSetValuesBlockedLocal(m_, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(),
-                                      zeros.data(), INSERT_VALUES));
+    const PetscInt row = d.to_distributed[static_cast<std::size_t>(r)];
+    PM_PETSC(MatSetValuesBlocked(m_, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(), zeros.data(),
+                                 INSERT_VALUES));
   }
   PM_PETSC(MatSetOption(m_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   PM_PETSC(MatSetOption(m_, MAT_IGNORE_ZERO_ENTRIES, PETSC_FALSE));
@@ -60,7 +61,7 @@ bool Matrix::acquire_distributed_view() {
   if (dview_) return true;
   PetscBool mpiaij = PETSC_FALSE;
   PM_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(m_), MATMPIAIJ, &mpiaij));
-  if (!mpiaij) return false;  // one process (SeqAIJ): MatSetValuesLocal
+  if (!mpiaij) return false;  // one process (SeqAIJ): MatSetValues in add()
   auto v = std::make_unique<DistributedView>();
   PM_PETSC(MatMPIAIJGetSeqAIJ(m_, &v->diag, &v->off, &v->garray));
   PetscInt noff = 0;
@@ -69,12 +70,7 @@ bool Matrix::acquire_distributed_view() {
   PM_PETSC(MatGetOwnershipRange(m_, &v->rstart, &v->rend));
   PetscInt bs = 1;
   PM_PETSC(MatGetBlockSize(m_, &bs));
-  const Distribution& dist = *distribution_;
-  v->to_dof.resize(static_cast<std::size_t>(dist.num_nodes() * bs));
-  for (Index n = 0; n < dist.num_nodes(); ++n)
-    for (Index k = 0; k < bs; ++k)
-      v->to_dof[static_cast<std::size_t>(n * bs + k)] =
-          dist.to_distributed[static_cast<std::size_t>(n)] * bs + k;
+  v->bs = bs;
   if (!borrow_csr(v->diag, v->d)) return false;
   if (!borrow_csr(v->off, v->o)) {
     return_csr(v->diag, v->d);
@@ -90,10 +86,22 @@ void Matrix::add_distributed(std::span<const Index> rows, std::span<const Index>
   // indices skipped, values summed in row-major order, an entry outside the
   // pattern an error; rows of other processes skipped (their owners compute them).
   DistributedView& v = *dview_;
+  const Distribution& dist = *distribution_;
   const std::size_t nc = cols.size();
+  // The columns' distributed numbers, once for every row (a block's columns
+  // fit the stack: 2 cells × 8 nodes × 3 components).
+  constexpr std::size_t on_stack = 64;
+  std::array<PetscInt, on_stack> stack_cols{};
+  std::vector<PetscInt> heap_cols;
+  PetscInt* gcols = stack_cols.data();
+  if (nc > on_stack) {
+    heap_cols.resize(nc);
+    gcols = heap_cols.data();
+  }
+  for (std::size_t j = 0; j < nc; ++j) gcols[j] = cols[j] < 0 ? -1 : dist.global_dof(cols[j], v.bs);
   for (std::size_t i = 0; i < rows.size(); ++i) {
     if (rows[i] < 0) continue;
-    const PetscInt gr = v.to_dof[static_cast<std::size_t>(rows[i])];
+    const PetscInt gr = dist.global_dof(rows[i], v.bs);
     const double* vrow = values.data() + i * nc;
     if (gr < v.rstart || gr >= v.rend) continue;
     const PetscInt lr = gr - v.rstart;
@@ -102,7 +110,7 @@ void Matrix::add_distributed(std::span<const Index> rows, std::span<const Index>
     const PetscInt* at = nullptr;  // the last diagonal-block entry written (runs of columns)
     for (std::size_t j = 0; j < nc; ++j) {
       if (cols[j] < 0) continue;
-      const PetscInt gc = v.to_dof[static_cast<std::size_t>(cols[j])];
+      const PetscInt gc = gcols[j];
       if (gc >= v.rstart && gc < v.rend) {
         const PetscInt c = gc - v.rstart;
         if (at != nullptr && at + 1 < dlast && at[1] == c)
@@ -172,9 +180,7 @@ std::vector<Eigen::MatrixXd> Matrix::distributed_blocks(std::span<const Index> d
   const Distribution& d = *distribution_;
   PetscInt bs = 1;
   PM_PETSC(MatGetBlockSize(m_, &bs));
-  auto global = [&](Index dof) {
-    return d.to_distributed[static_cast<std::size_t>(dof / bs)] * bs + dof % bs;
-  };
+  auto global = [&](Index dof) { return d.global_dof(dof, bs); };
   // Every block's owned rows, row-major, one after the other; −0.0 elsewhere
   // (la::from_owners: each row from its one owner, exactly).
   std::size_t total = 0;
@@ -216,7 +222,7 @@ std::vector<double> Matrix::owned_diagonal_at(std::span<const Index> rows) const
     PetscInt row = rows[k];
     if (distribution_) {
       PERIMORPH_ASSERT(distribution_->owns(row / bs), "owned_diagonal_at: a row another process owns");
-      row = distribution_->to_distributed[static_cast<std::size_t>(row / bs)] * bs + row % bs;
+      row = distribution_->global_dof(row, bs);
     }
     PM_PETSC(MatGetValues(m_, 1, &row, 1, &row, &out[k]));
   }

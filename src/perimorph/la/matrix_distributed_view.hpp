@@ -6,8 +6,6 @@
 
 #include <petscmat.h>
 
-#include <vector>
-
 namespace perimorph::la {
 
 struct Matrix::DistributedView {
@@ -15,7 +13,7 @@ struct Matrix::DistributedView {
   const PetscInt* garray = nullptr;   ///< the off block's columns, global and ascending
   CsrView d, o;                       ///< their arrays, borrowed until release
   PetscInt rstart = 0, rend = 0;      ///< owned rows (= owned columns)
-  std::vector<PetscInt> to_dof;       ///< assembly dof → distributed dof
+  PetscInt bs = 1;                    ///< the block size (components a dof node)
 };
 
 }  // namespace perimorph::la
