@@ -91,7 +91,7 @@ void Matrix::add_distributed(std::span<const Index> rows, std::span<const Index>
   // The columns' distributed numbers, once for every row (a block's columns
   // fit the stack: 2 cells × 8 nodes × 3 components).
   constexpr std::size_t on_stack = 64;
-  std::array<PetscInt, on_stack> stack_cols{};
+  std::array<PetscInt, on_stack> stack_cols;  // written before read
   std::vector<PetscInt> heap_cols;
   PetscInt* gcols = stack_cols.data();
   if (nc > on_stack) {
@@ -99,9 +99,10 @@ void Matrix::add_distributed(std::span<const Index> rows, std::span<const Index>
     gcols = heap_cols.data();
   }
   for (std::size_t j = 0; j < nc; ++j) gcols[j] = cols[j] < 0 ? -1 : dist.global_dof(cols[j], v.bs);
+  const bool same_rows = rows.data() == cols.data() && rows.size() == nc;  // a block's rows are its columns
   for (std::size_t i = 0; i < rows.size(); ++i) {
     if (rows[i] < 0) continue;
-    const PetscInt gr = dist.global_dof(rows[i], v.bs);
+    const PetscInt gr = same_rows ? gcols[i] : dist.global_dof(rows[i], v.bs);
     const double* vrow = values.data() + i * nc;
     if (gr < v.rstart || gr >= v.rend) continue;
     const PetscInt lr = gr - v.rstart;
