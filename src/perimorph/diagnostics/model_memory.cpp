@@ -28,6 +28,8 @@ ModelMemory model_memory(const setup::Discretization& model) {
   // Offsets and cell nodes, a flag per cell, a mesh node (or centroid's cell) per dof node.
   m.dofs = (cells + 1 + cell_nodes) * sizeof(Index) + cells * sizeof(dofs::Continuity) +
            static_cast<std::size_t>(dm.num_nodes()) * sizeof(Index);
+  m.displacement = static_cast<std::size_t>(dm.num_dofs()) * sizeof(double);
+  m.distribution = static_cast<std::size_t>(dm.num_nodes()) * sizeof(Index);
   m.stiffness = model.stiffness.bytes();
   if (model.nonlocal) {
     const auto& nl = *model.nonlocal;
