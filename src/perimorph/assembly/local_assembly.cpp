@@ -114,16 +114,16 @@ fem::ElementVector<D> gather(const dofs::DofMap& dofmap, Index c, std::span<cons
 
 template <int D>
 CellFields cell_strain_stress_dim(const LocalSpace& s, const fem::ConstitutiveField& C,
-                                  std::span<const double> u, std::span<const char> cells) {
+                                  std::span<const double> u, std::span<const Index> cells) {
   constexpr int nv = fem::voigt_dim<D>;
-  const Index ncells = s.mesh.num_cells();
+  const Index count = cells.empty() ? s.mesh.num_cells() : static_cast<Index>(cells.size());
   CellFields out;
-  out.strain.assign(static_cast<std::size_t>(ncells * nv), 0.0);
-  out.stress.assign(static_cast<std::size_t>(ncells * nv), 0.0);
-  out.energy_density.assign(static_cast<std::size_t>(ncells), 0.0);
+  out.strain.assign(static_cast<std::size_t>(count * nv), 0.0);
+  out.stress.assign(static_cast<std::size_t>(count * nv), 0.0);
+  out.energy_density.assign(static_cast<std::size_t>(count), 0.0);
 #pragma omp parallel for schedule(static)
-  for (Index c = 0; c < ncells; ++c) {
-    if (!cells.empty() && cells[static_cast<std::size_t>(c)] == 0) continue;
+  for (Index k = 0; k < count; ++k) {
+    const Index c = cells.empty() ? k : cells[static_cast<std::size_t>(k)];
     // DG degree 0 cells have no strain of their own (constant displacement): left 0.
     if (static_cast<int>(s.dofmap.cell_nodes(c).size()) != fem::q1_nodes<D>) continue;
     const auto X = cell_coordinates<D>(s.mesh, c);
@@ -142,10 +142,10 @@ CellFields cell_strain_stress_dim(const LocalSpace& s, const fem::ConstitutiveFi
       vol += dv;
     }
     for (int i = 0; i < nv; ++i) {
-      out.strain[static_cast<std::size_t>(c * nv + i)] = eps_sum[i] / vol;
-      out.stress[static_cast<std::size_t>(c * nv + i)] = sig_sum[i] / vol;
+      out.strain[static_cast<std::size_t>(k * nv + i)] = eps_sum[i] / vol;
+      out.stress[static_cast<std::size_t>(k * nv + i)] = sig_sum[i] / vol;
     }
-    out.energy_density[static_cast<std::size_t>(c)] = energy / vol;
+    out.energy_density[static_cast<std::size_t>(k)] = energy / vol;
   }
   return out;
 }
@@ -196,7 +196,7 @@ void assemble_traction(const LocalSpace& space, std::span<const mesh::CellFace> 
 }
 
 CellFields cell_strain_stress(const LocalSpace& space, const fem::ConstitutiveField& C,
-                              std::span<const double> u, std::span<const char> cells) {
+                              std::span<const double> u, std::span<const Index> cells) {
   return dispatch_dim(space.mesh.dim(),
                       [&](auto D) { return cell_strain_stress_dim<D()>(space, C, u, cells); });
 }

@@ -56,10 +56,11 @@ struct CellFields {
   std::vector<double> strain, stress;
   std::vector<double> energy_density;  ///< 1/2 σ:ε averaged over the cell
 };
-/// With `cells` (one flag per cell), only the flagged cells are computed, the
-/// others left at 0 (a process's piece of the output).
+/// The fields of the listed `cells`, in their order (k-th cell's values at
+/// k · voigt_size(dim)), or with no list of every cell in order. A process's
+/// piece of the output lists its cells: its arrays are as long as its piece.
 CellFields cell_strain_stress(const LocalSpace& space, const fem::ConstitutiveField& C,
-                              std::span<const double> u, std::span<const char> cells = {});
+                              std::span<const double> u, std::span<const Index> cells = {});
 
 /// The strain (voigt_size(dim) values per point, point-major) and the volume
 /// weight w|J|·scale at every point of `space.rule` in cell c (a Q1 cell: not

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <filesystem>
 #include <utility>
@@ -152,24 +153,21 @@ io::UnstructuredGrid RunOutput::increment_grid(const setup::Discretization& mode
   io::UnstructuredGrid grid;
   grid.nodes_per_cell = model.mesh.nodes_per_cell();
   grid.cell_type = vtk_cell(dim_);
-  // Points are the dof nodes (those of the cells written, ascending); a DG
-  // degree 0 cell is drawn with its own corner points, all carrying the
-  // displacement of its centroid node.
-  constexpr Index unused = -1;
-  std::vector<Index> point_of_node(static_cast<std::size_t>(dm.num_nodes()), selected.empty() ? 0 : unused);
-  for (Index c : cells)
-    for (Index n : dm.cell_nodes(c)) point_of_node[static_cast<std::size_t>(n)] = 0;
-  std::vector<Index> point_dof_node;
-  for (Index n = 0; n < dm.num_nodes(); ++n) {
-    if (point_of_node[static_cast<std::size_t>(n)] == unused) continue;
-    point_of_node[static_cast<std::size_t>(n)] = static_cast<Index>(point_dof_node.size());
-    point_dof_node.push_back(n);
-    grid.points.push_back(dm.node_coordinate(model.mesh, n));
-  }
+  // Points are the dof nodes of the cells written, ascending (for the whole
+  // model every dof node), found by search: no array as long as the model's
+  // for a piece. A DG degree 0 cell is drawn with its own corner points, all
+  // carrying the displacement of its centroid node.
+  std::vector<Index> point_dof_node = dm.dof_nodes_of_cells(cells);
+  const auto node_points = static_cast<std::ptrdiff_t>(point_dof_node.size());
+  auto point_of_node = [&](Index n) {
+    const auto first = point_dof_node.begin();
+    return static_cast<Index>(std::lower_bound(first, first + node_points, n) - first);
+  };
+  for (Index n : point_dof_node) grid.points.push_back(dm.node_coordinate(model.mesh, n));
   for (Index c : cells) {
     const auto nodes = dm.cell_nodes(c);
     if (static_cast<int>(nodes.size()) == grid.nodes_per_cell) {
-      for (Index n : nodes) grid.connectivity.push_back(point_of_node[static_cast<std::size_t>(n)]);
+      for (Index n : nodes) grid.connectivity.push_back(point_of_node(n));
       continue;
     }
     for (Index corner : model.mesh.cell(c)) {
@@ -197,17 +195,18 @@ io::UnstructuredGrid RunOutput::increment_grid(const setup::Discretization& mode
           ? setup::damaged_stiffness(model.stiffness, *model.damage, damage.history)
           : fem::ConstitutiveField(0, 0, 0);
   const auto fields = assembly::cell_strain_stress(
-      model.local_space(), damage.history.empty() ? model.stiffness : damaged, u, selected);
+      model.local_space(), damage.history.empty() ? model.stiffness : damaged, u,
+      selected.empty() ? std::span<const Index>{} : std::span<const Index>(cells));
   const int nv = fem::voigt_size(dim_);
   io::Field strain{"strain", 9, {}}, stress{"stress", 9, {}}, region{"region", 1, {}},
       energy{"strain_energy_density", 1, {}};
-  for (Index c : cells) {
-    const auto e = voigt_to_tensor(&fields.strain[static_cast<std::size_t>(c * nv)], dim_, true);
-    const auto s = voigt_to_tensor(&fields.stress[static_cast<std::size_t>(c * nv)], dim_, false);
+  for (std::size_t k = 0; k < cells.size(); ++k) {  // the fields are in the order of `cells`
+    const auto e = voigt_to_tensor(&fields.strain[k * static_cast<std::size_t>(nv)], dim_, true);
+    const auto s = voigt_to_tensor(&fields.stress[k * static_cast<std::size_t>(nv)], dim_, false);
     strain.values.insert(strain.values.end(), e.begin(), e.end());
     stress.values.insert(stress.values.end(), s.begin(), s.end());
-    region.values.push_back(model.mesh.cell_region[static_cast<std::size_t>(c)]);
-    energy.values.push_back(fields.energy_density[static_cast<std::size_t>(c)]);
+    region.values.push_back(model.mesh.cell_region[static_cast<std::size_t>(cells[k])]);
+    energy.values.push_back(fields.energy_density[k]);
   }
   grid.cell_data = {std::move(strain), std::move(stress), std::move(region), std::move(energy)};
   if (model.nonlocal) {
