@@ -87,13 +87,14 @@ void append_memory(std::back_insert_iterator<std::string> out, const setup::Disc
   const auto per_cell = [&](std::size_t b) {
     return static_cast<double>(b) / static_cast<double>(std::max<Index>(model.mesh.num_cells(), 1));
   };
-  fmt::format_to(out,
-                 "memory     the model: mesh {:.2f} MB, dof map {:.2f} MB{}: {:.0f} bytes per cell with the "
-                 "place of each cell's points, held whole by every process of a distributed run; {}. A run "
-                 "adds, whole on every process, u {:.2f} MB and the dof nodes' distributed numbers {:.2f} MB: "
-                 "{:.0f} bytes per cell in all\n",
-                 MB(m.mesh), MB(m.dofs), nonlocal, per_cell(whole), part, MB(m.displacement),
-                 MB(m.distribution), per_cell(whole + m.displacement + m.distribution));
+  fmt::format_to(
+      out,
+      "memory     the model: mesh {:.2f} MB, dof map {:.2f} MB{}: {:.0f} bytes per cell with the "
+      "place of each cell's points, held whole by every process of a distributed run; {}. A run "
+      "adds, whole on every process, u {:.2f} MB and the dof nodes' distributed numbers {:.2f} MB: "
+      "{:.0f} bytes per cell in all\n",
+      MB(m.mesh), MB(m.dofs), nonlocal, per_cell(whole), part, MB(m.displacement), MB(m.distribution),
+      per_cell(whole + m.displacement + m.distribution));
 }
 
 }  // namespace
