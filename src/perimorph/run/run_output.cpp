@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <filesystem>
+#include <numeric>
 #include <utility>
 
 namespace perimorph::run {
@@ -153,13 +154,20 @@ io::UnstructuredGrid RunOutput::increment_grid(const setup::Discretization& mode
   io::UnstructuredGrid grid;
   grid.nodes_per_cell = model.mesh.nodes_per_cell();
   grid.cell_type = vtk_cell(dim_);
-  // Points are the dof nodes of the cells written, ascending (for the whole
-  // model every dof node), found by search: no array as long as the model's
-  // for a piece. A DG degree 0 cell is drawn with its own corner points, all
-  // carrying the displacement of its centroid node.
-  std::vector<Index> point_dof_node = dm.dof_nodes_of_cells(cells);
+  // Points are the dof nodes of the cells written, ascending: for the whole
+  // model every dof node (point n is node n), for a piece its cells' nodes,
+  // found by search (no array as long as the model's). A DG degree 0 cell is
+  // drawn with its own corner points, all carrying its centroid node's displacement.
+  std::vector<Index> point_dof_node;
+  if (selected.empty()) {
+    point_dof_node.resize(static_cast<std::size_t>(dm.num_nodes()));
+    std::iota(point_dof_node.begin(), point_dof_node.end(), Index{0});
+  } else {
+    point_dof_node = dm.dof_nodes_of_cells(cells);
+  }
   const auto node_points = static_cast<std::ptrdiff_t>(point_dof_node.size());
   auto point_of_node = [&](Index n) {
+    if (selected.empty()) return n;
     const auto first = point_dof_node.begin();
     return static_cast<Index>(std::lower_bound(first, first + node_points, n) - first);
   };
