@@ -93,6 +93,13 @@ class Matrix final : public assembly::MatrixInserter {
   /// during the call.
   void visit_rows(
       const std::function<void(Index, std::span<const Index>, std::span<const double>)>& visit) const;
+  /// Calls visit(row, columns, values) for every row this process owns, in
+  /// order, in the distributed numbering (the assembly's without a
+  /// distribution), with its stored entries (columns ascending, distributed
+  /// numbers). Nothing is sent: two matrices of the same rows on any pieces
+  /// of the model compare row by row (the spans are valid during the call).
+  void visit_owned_rows(
+      const std::function<void(Index, std::span<const Index>, std::span<const double>)>& visit) const;
   /// The stored structure as a block pattern (the matrix's block size; every
   /// row of a block row has the same block columns, as Matrix(pattern) and
   /// without_zero_blocks make them): with Matrix(pattern) and set_values of

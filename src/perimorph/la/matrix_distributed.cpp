@@ -154,6 +154,21 @@ std::vector<Index> Matrix::assembly_rows() const {
   return to_assembly;
 }
 
+void Matrix::visit_owned_rows(
+    const std::function<void(Index, std::span<const Index>, std::span<const double>)>& visit) const {
+  release_view();
+  PetscInt first = 0, last = 0;
+  PM_PETSC(MatGetOwnershipRange(m_, &first, &last));
+  for (PetscInt r = first; r < last; ++r) {
+    PetscInt ncols = 0;
+    const PetscInt* cols = nullptr;
+    const PetscScalar* vals = nullptr;
+    PM_PETSC(MatGetRow(m_, r, &ncols, &cols, &vals));
+    visit(r, {cols, static_cast<std::size_t>(ncols)}, {vals, static_cast<std::size_t>(ncols)});
+    PM_PETSC(MatRestoreRow(m_, r, &ncols, &cols, &vals));
+  }
+}
+
 Eigen::MatrixXd Matrix::distributed_to_dense() const {
   release_view();
   // The owned rows, by assembly numbering, summed over the processes.

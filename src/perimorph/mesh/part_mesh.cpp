@@ -1,0 +1,77 @@
+#include "perimorph/mesh/part_mesh.hpp"
+
+#include "perimorph/core/error.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace perimorph::mesh {
+namespace {
+
+/// The position of `value` in the ascending `sorted`, or -1.
+Index find_sorted(const std::vector<Index>& sorted, Index value) {
+  const auto it = std::lower_bound(sorted.begin(), sorted.end(), value);
+  return it != sorted.end() && *it == value ? static_cast<Index>(it - sorted.begin()) : -1;
+}
+
+}  // namespace
+
+Index PartMesh::local_cell(Index c) const {
+  return find_sorted(global_cell, c);
+}
+Index PartMesh::local_node(Index n) const {
+  return find_sorted(global_node, n);
+}
+
+PartMesh part_mesh(const Mesh& whole, std::span<const Index> cells) {
+  std::vector<Index> global_cell(cells.begin(), cells.end());
+  std::sort(global_cell.begin(), global_cell.end());
+  for (std::size_t k = 0; k < global_cell.size(); ++k) {
+    const Index c = global_cell[k];
+    if (c < 0 || c >= whole.num_cells())
+      throw Error(fmt::format("part mesh: cell {} is not one of the mesh's {} cells", c, whole.num_cells()));
+    if (k > 0 && global_cell[k - 1] == c) throw Error(fmt::format("part mesh: cell {} is listed twice", c));
+  }
+
+  std::vector<Index> global_node;
+  global_node.reserve(global_cell.size() * static_cast<std::size_t>(whole.nodes_per_cell()));
+  for (Index c : global_cell)
+    for (Index n : whole.cell(c)) global_node.push_back(n);
+  std::sort(global_node.begin(), global_node.end());
+  global_node.erase(std::unique(global_node.begin(), global_node.end()), global_node.end());
+
+  std::vector<Vec3> nodes;
+  nodes.reserve(global_node.size());
+  for (Index n : global_node) nodes.push_back(whole.node(n));
+  std::vector<Index> connectivity;
+  connectivity.reserve(global_cell.size() * static_cast<std::size_t>(whole.nodes_per_cell()));
+  for (Index c : global_cell)
+    for (Index n : whole.cell(c)) connectivity.push_back(find_sorted(global_node, n));
+
+  PartMesh out{Mesh(whole.dim(), std::move(nodes), std::move(connectivity)), std::move(global_cell),
+               std::move(global_node)};
+  Mesh& mesh = out.mesh;
+  for (std::size_t k = 0; k < out.global_cell.size(); ++k)
+    mesh.cell_region[k] = whole.cell_region[static_cast<std::size_t>(out.global_cell[k])];
+  mesh.cuts = whole.cuts;
+
+  for (const auto& [name, set] : whole.node_sets) {
+    auto& mine = mesh.node_sets[name];
+    for (Index n : set)
+      if (const Index l = out.local_node(n); l >= 0) mine.push_back(l);
+  }
+  for (const auto& [name, set] : whole.face_sets) {
+    auto& mine = mesh.face_sets[name];
+    for (const CellFace& f : set)
+      if (const Index l = out.local_cell(f.cell); l >= 0) mine.push_back({l, f.face});
+  }
+  for (const auto& [name, set] : whole.cell_sets) {
+    auto& mine = mesh.cell_sets[name];
+    for (Index c : set)
+      if (const Index l = out.local_cell(c); l >= 0) mine.push_back(l);
+  }
+  return out;
+}
+
+}  // namespace perimorph::mesh

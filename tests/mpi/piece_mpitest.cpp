@@ -1,0 +1,156 @@
+// The halo numbering of issue 17, item 1, under mpiexec -n 1, 2 and 3: each
+// process builds its piece of the model (its part's cells and their node
+// neighbours, a mesh of their own numbered locally) and numbers the piece's
+// dof nodes from the piece alone, one prefix sum and one exchange by key
+// (system::piece_distribution). The numbers must be the whole model's
+// (partition::dof_numbering), ghosts included, and the local stiffness
+// assembled on the pieces the whole model's distributed matrix bit for bit.
+
+#include "perimorph/assembly/local_assembly.hpp"
+#include "perimorph/assembly/sparsity.hpp"
+#include "perimorph/core/error.hpp"
+#include "perimorph/fem/constitutive_field.hpp"
+#include "perimorph/fem/material.hpp"
+#include "perimorph/fem/quadrature.hpp"
+#include "perimorph/la/key_exchange.hpp"
+#include "perimorph/la/matrix.hpp"
+#include "perimorph/la/petsc_session.hpp"
+#include "perimorph/mesh/box.hpp"
+#include "perimorph/partition/dof_layout.hpp"
+#include "perimorph/system/piece_distribution.hpp"
+#include "support/pieces.hpp"
+
+#include <gtest/gtest.h>
+
+#include <tuple>
+
+namespace perimorph {
+namespace {
+
+mesh::Mesh box(int dim) {
+  return dim == 2 ? mesh::make_box({2, Vec3(0, 0, 0), Vec3(9, 7, 0), {9, 7, 1}})
+                  : mesh::make_box({3, Vec3(0, 0, 0), Vec3(5, 4, 3), {5, 4, 3}});
+}
+
+/// The whole model's dof node at corner a of the piece's local cell.
+Index whole_node_of(const dofs::DofMap& whole, const testing::TestPiece& piece, Index local_cell,
+                    std::size_t a) {
+  return whole.cell_nodes(piece.part.global_cell[static_cast<std::size_t>(local_cell)])[a];
+}
+
+class Pieces : public ::testing::TestWithParam<int> {};
+
+TEST_P(Pieces, NumberTheirDofNodesAsTheWholeModelGhostsIncluded) {
+  const auto whole = box(GetParam());
+  const auto flags = testing::mixed_continuity(whole);
+  const dofs::DofMap dm(whole, whole.dim(), flags);
+  const int parts = la::world_size(), part = la::world_rank();
+  const auto p = partition::coordinate_bisection(whole, parts);
+  const auto layout = partition::dof_numbering(dm, p);
+  const auto piece = testing::make_piece(whole, flags, p, part, whole.dim());
+  const auto d = system::piece_distribution(piece.dofs);
+
+  EXPECT_EQ(d->begin, layout.part_offsets[static_cast<std::size_t>(part)]);
+  EXPECT_EQ(d->end, layout.part_offsets[static_cast<std::size_t>(part) + 1]);
+  ASSERT_EQ(d->num_nodes(), piece.dofmap.num_nodes());
+  Index ghosts = 0;
+  for (Index c = 0; c < piece.dofmap.num_cells(); ++c) {
+    const auto nodes = piece.dofmap.cell_nodes(c);
+    for (std::size_t a = 0; a < nodes.size(); ++a) {
+      const Index w = whole_node_of(dm, piece, c, a);
+      EXPECT_EQ(d->to_distributed[static_cast<std::size_t>(nodes[a])],
+                layout.to_distributed[static_cast<std::size_t>(w)]);
+      EXPECT_EQ(d->owns(nodes[a]), layout.node_owner[static_cast<std::size_t>(w)] == part);
+    }
+  }
+  for (Index n = 0; n < piece.dofmap.num_nodes(); ++n) ghosts += d->owns(n) ? 0 : 1;
+  if (parts > 1) {
+    EXPECT_GT(ghosts, 0) << "a piece reads its neighbours' nodes";
+  }
+}
+
+/// The local stiffness of the cells with a node `owns` holds for (DG degree 0
+/// cells have none: purely non-local, THEORY §4), cell c's
+/// tensor that of the whole model's cell global(c) (a different one a cell,
+/// so that a cell mistaken for another shows).
+la::Matrix assemble(const mesh::Mesh& mesh, const dofs::DofMap& dm, std::shared_ptr<const la::Distribution> d,
+                    const std::function<Index(Index)>& global) {
+  const auto rule = fem::gauss_legendre(mesh.dim(), 2);
+  fem::ConstitutiveField C(mesh.dim(), mesh.num_cells(), static_cast<int>(rule.size()));
+  for (Index c = 0; c < mesh.num_cells(); ++c) {
+    const fem::IsotropicElasticity m{100.0 + global(c), 0.2 + 0.001 * (global(c) % 7)};
+    C.set_cell(c,
+               C.add_tensor(fem::reduce_stiffness(fem::stiffness_voigt(m), mesh.dim(), PlaneMode::strain)));
+  }
+  const auto owns = [&](Index n) { return d->owns(n); };
+  la::Matrix K(assembly::build_sparsity(dm, nullptr, owns), d);
+  const auto touching = partition::cells_touching(dm, owns);
+  assembly::assemble_elasticity({mesh, dm, rule, 1.0}, C, K, [&](Index c) {
+    return touching[static_cast<std::size_t>(c)] != 0 &&
+           dm.continuity(c) != dofs::Continuity::discontinuous_constant;
+  });
+  K.finalize();
+  return K;
+}
+
+using Rows = std::vector<std::tuple<Index, std::vector<Index>, std::vector<double>>>;
+Rows owned_rows(const la::Matrix& K) {
+  Rows out;
+  K.visit_owned_rows([&](Index r, std::span<const Index> cols, std::span<const double> vals) {
+    out.emplace_back(r, std::vector<Index>(cols.begin(), cols.end()),
+                     std::vector<double>(vals.begin(), vals.end()));
+  });
+  return out;
+}
+
+TEST_P(Pieces, AssembleTheWholeModelsMatrixBitForBit) {
+  const auto whole = box(GetParam());
+  const auto flags = testing::mixed_continuity(whole);
+  const dofs::DofMap dm(whole, whole.dim(), flags);
+  const int parts = la::world_size(), part = la::world_rank();
+  const auto p = partition::coordinate_bisection(whole, parts);
+  auto whole_d = std::make_shared<la::Distribution>();
+  const auto layout = partition::dof_numbering(dm, p);
+  whole_d->to_distributed = layout.to_distributed;
+  whole_d->begin = layout.part_offsets[static_cast<std::size_t>(part)];
+  whole_d->end = layout.part_offsets[static_cast<std::size_t>(part) + 1];
+  const auto piece = testing::make_piece(whole, flags, p, part, whole.dim());
+
+  const Rows expected = owned_rows(assemble(whole, dm, whole_d, [](Index c) { return c; }));
+  const Rows got =
+      owned_rows(assemble(piece.part.mesh, piece.dofmap, system::piece_distribution(piece.dofs),
+                          [&](Index c) { return piece.part.global_cell[static_cast<std::size_t>(c)]; }));
+  ASSERT_FALSE(expected.empty());
+  EXPECT_TRUE(got == expected) << "process " << part << " of " << parts;
+}
+
+INSTANTIATE_TEST_SUITE_P(Dim, Pieces, ::testing::Values(2, 3));
+
+TEST(ValuesOfKeys, EveryProcessGetsTheValuesOfTheKeysItAsksFromTheirHolders) {
+  const int size = la::world_size(), rank = la::world_rank();
+  // Process r holds the keys 10 k + r (k < 5) with value 1000 r + k, and asks
+  // for every key of the next process in reverse order.
+  std::vector<Index> keys, values, wanted;
+  for (Index k = 0; k < 5; ++k) {
+    keys.push_back(10 * k + rank);
+    values.push_back(1000 * rank + k);
+  }
+  const int next = (rank + 1) % size;
+  if (next != rank)
+    for (Index k = 4; k >= 0; --k) wanted.push_back(10 * k + next);
+  const auto got = la::values_of_keys(keys, values, wanted, 10 * 5);
+  ASSERT_EQ(got.size(), wanted.size());
+  for (std::size_t i = 0; i < got.size(); ++i) EXPECT_EQ(got[i], 1000 * next + (4 - static_cast<Index>(i)));
+  EXPECT_EQ(la::offset_over_processes(rank + 1), rank * (rank + 1) / 2);
+}
+
+TEST(ValuesOfKeys, AKeyNoProcessHoldsStopsEveryProcess) {
+  const int rank = la::world_rank();
+  const std::vector<Index> keys{2 * rank}, values{rank};
+  // Process 0 asks for an odd key, which nobody holds.
+  const std::vector<Index> wanted = rank == 0 ? std::vector<Index>{1} : std::vector<Index>{};
+  EXPECT_THROW(la::values_of_keys(keys, values, wanted, 2 * la::world_size()), Error);
+}
+
+}  // namespace
+}  // namespace perimorph
