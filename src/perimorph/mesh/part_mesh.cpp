@@ -34,26 +34,33 @@ PartMesh part_mesh(const Mesh& whole, std::span<const Index> cells) {
     if (k > 0 && global_cell[k - 1] == c) throw Error(fmt::format("part mesh: cell {} is listed twice", c));
   }
 
-  std::vector<Index> global_node;
-  global_node.reserve(global_cell.size() * static_cast<std::size_t>(whole.nodes_per_cell()));
-  for (Index c : global_cell)
-    for (Index n : whole.cell(c)) global_node.push_back(n);
-  std::sort(global_node.begin(), global_node.end());
-  global_node.erase(std::unique(global_node.begin(), global_node.end()), global_node.end());
-
+  // The cells' node entries sorted by global node (each with its place in
+  // the connectivity): the local nodes in global order, and each entry's
+  // local node, in one sweep.
+  const auto k = static_cast<std::size_t>(whole.nodes_per_cell());
+  std::vector<std::pair<Index, Index>> entries;
+  entries.reserve(global_cell.size() * k);
+  for (std::size_t c = 0; c < global_cell.size(); ++c) {
+    const auto nodes = whole.cell(global_cell[c]);
+    for (std::size_t a = 0; a < k; ++a) entries.emplace_back(nodes[a], static_cast<Index>(c * k + a));
+  }
+  std::sort(entries.begin(), entries.end());
+  std::vector<Index> global_node, connectivity(entries.size());
   std::vector<Vec3> nodes;
-  nodes.reserve(global_node.size());
-  for (Index n : global_node) nodes.push_back(whole.node(n));
-  std::vector<Index> connectivity;
-  connectivity.reserve(global_cell.size() * static_cast<std::size_t>(whole.nodes_per_cell()));
-  for (Index c : global_cell)
-    for (Index n : whole.cell(c)) connectivity.push_back(find_sorted(global_node, n));
+  for (const auto& [n, at] : entries) {
+    if (global_node.empty() || global_node.back() != n) {
+      global_node.push_back(n);
+      nodes.push_back(whole.node(n));
+    }
+    connectivity[static_cast<std::size_t>(at)] = static_cast<Index>(global_node.size()) - 1;
+  }
+  entries = {};
 
   PartMesh out{Mesh(whole.dim(), std::move(nodes), std::move(connectivity)), std::move(global_cell),
                std::move(global_node)};
   Mesh& mesh = out.mesh;
-  for (std::size_t k = 0; k < out.global_cell.size(); ++k)
-    mesh.cell_region[k] = whole.cell_region[static_cast<std::size_t>(out.global_cell[k])];
+  for (std::size_t c = 0; c < out.global_cell.size(); ++c)
+    mesh.cell_region[c] = whole.cell_region[static_cast<std::size_t>(out.global_cell[c])];
   mesh.cuts = whole.cuts;
 
   for (const auto& [name, set] : whole.node_sets) {
