@@ -1,7 +1,7 @@
 // Bond weights per non-local point (bond_stretch.hpp, the damage index of
 // THEORY §5): every bond counts at both its points, failed bonds also in
-// `lost`, the sums are the same for one and two threads, and a part's cells
-// get the whole pass's sums.
+// `lost`, the sums are the same for one and two threads, a part's cells get
+// the whole pass's sums, and so does the damage index of a list of cells.
 
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/bonds/broken_bonds.hpp"
@@ -84,6 +84,31 @@ TEST(BondWeights, EveryBondCountsAtBothPointsForAnyThreadCount) {
     }
     EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; })) << parts;
   }
+
+  // The damage index of listed cells (the output's cells, issue 17): the
+  // mean of lost / total over each cell's points, the same bits as from the
+  // whole arrays, in the list's order, for one and two threads.
+  std::vector<Index> listed;
+  for (Index e = model.mesh.num_cells() - 1; e >= 0; e -= 3) listed.push_back(e);
+  omp_set_num_threads(1);
+  const auto d1 = assembly::cell_damage(space, listed);
+  omp_set_num_threads(2);
+  const auto d2 = assembly::cell_damage(space, listed);
+  omp_set_num_threads(saved);
+  ASSERT_EQ(d1.size(), listed.size());
+  EXPECT_EQ(d1, d2);
+  std::size_t damaged = 0;
+  for (std::size_t k = 0; k < listed.size(); ++k) {
+    double d = 0.0;
+    for (int g = 0; g < nl.points.per_cell; ++g) {
+      const std::size_t i = nl.points.index(listed[k], g);
+      d += one.total[i] > 0.0 ? one.lost[i] / one.total[i] : 0.0;
+    }
+    EXPECT_EQ(d1[k], d / nl.points.per_cell) << listed[k];
+    damaged += d1[k] > 0.0 ? 1 : 0;
+  }
+  EXPECT_GT(damaged, 0u);
+  EXPECT_LT(damaged, listed.size());
 }
 
 }  // namespace

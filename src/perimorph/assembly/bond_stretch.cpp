@@ -149,36 +149,67 @@ std::vector<StretchedBond> bonds_over_dim(const NonlocalSpace& s, std::span<cons
   return all;
 }
 
+/// Σ W ᾱ c_bond |ξ|² over the bonds of each point of cell c, and the part of
+/// failed bonds, added to total[q] and lost[q] (q: the point's number in c).
+/// The cell visits its graph row in order (a bond between two cells is
+/// visited from both), so each sum has a fixed order wherever it is called.
+template <int D>
+void add_cell_bond_weights(const NonlocalSpace& s, Index c, double* total, double* lost) {
+  auto add = [&](int q, double v, bool failed) {
+    total[q] += v;
+    if (failed) lost[q] += v;
+  };
+  for (Index f : s.graph.row(c)) {
+    if (f >= c)
+      for_each_bond_of_pair<D>(s, c, f, [&](int g, int h, const Vec3&, double r2, double Wc, bool failed) {
+        add(g, Wc * r2, failed);
+        if (f == c) add(h, Wc * r2, failed);
+      });
+    else
+      for_each_bond_of_pair<D>(s, f, c, [&](int, int h, const Vec3&, double r2, double Wc, bool failed) {
+        add(h, Wc * r2, failed);
+      });
+  }
+}
+
 template <int D>
 BondWeights point_bond_weights_dim(const NonlocalSpace& s, std::span<const char> cells) {
   const auto& pts = s.points;
   BondWeights w;
   w.total.assign(pts.x.size(), 0.0);
   w.lost.assign(pts.x.size(), 0.0);
-  // Each cell sums the bonds of its own points, visiting its graph row in
-  // order (a bond between two cells is visited from both), so every sum has
-  // a fixed order whatever the thread count, and threads write disjoint points.
+  // Threads write disjoint points (each cell its own).
   const Index ncells = s.mesh.num_cells();
 #pragma omp parallel for schedule(dynamic, 8)
   for (Index c = 0; c < ncells; ++c) {
     if (!cells.empty() && cells[static_cast<std::size_t>(c)] == 0) continue;
-    auto add = [&](std::size_t k, double v, bool failed) {
-      w.total[k] += v;
-      if (failed) w.lost[k] += v;
-    };
-    for (Index f : s.graph.row(c)) {
-      if (f >= c)
-        for_each_bond_of_pair<D>(s, c, f, [&](int g, int h, const Vec3&, double r2, double Wc, bool failed) {
-          add(pts.index(c, g), Wc * r2, failed);
-          if (f == c) add(pts.index(c, h), Wc * r2, failed);
-        });
-      else
-        for_each_bond_of_pair<D>(s, f, c, [&](int, int h, const Vec3&, double r2, double Wc, bool failed) {
-          add(pts.index(c, h), Wc * r2, failed);
-        });
-    }
+    const std::size_t first = pts.index(c, 0);
+    add_cell_bond_weights<D>(s, c, &w.total[first], &w.lost[first]);
   }
   return w;
+}
+
+template <int D>
+std::vector<double> cell_damage_dim(const NonlocalSpace& s, std::span<const Index> cells) {
+  const int n = s.points.per_cell;
+  std::vector<double> out(cells.size());
+#pragma omp parallel
+  {
+    std::vector<double> total(static_cast<std::size_t>(n)), lost(total.size());
+#pragma omp for schedule(dynamic, 8)
+    for (std::size_t k = 0; k < cells.size(); ++k) {
+      std::fill(total.begin(), total.end(), 0.0);
+      std::fill(lost.begin(), lost.end(), 0.0);
+      add_cell_bond_weights<D>(s, cells[k], total.data(), lost.data());
+      double d = 0.0;
+      for (int q = 0; q < n; ++q) {
+        const auto i = static_cast<std::size_t>(q);
+        d += total[i] > 0.0 ? lost[i] / total[i] : 0.0;
+      }
+      out[k] = d / n;
+    }
+  }
+  return out;
 }
 
 template <int D>
@@ -281,6 +312,10 @@ std::vector<StretchedBond> bonds_over(const NonlocalSpace& space, std::span<cons
 
 BondWeights point_bond_weights(const NonlocalSpace& space, std::span<const char> cells) {
   return dispatch_dim(space.mesh.dim(), [&](auto D) { return point_bond_weights_dim<D()>(space, cells); });
+}
+
+std::vector<double> cell_damage(const NonlocalSpace& space, std::span<const Index> cells) {
+  return dispatch_dim(space.mesh.dim(), [&](auto D) { return cell_damage_dim<D()>(space, cells); });
 }
 
 }  // namespace perimorph::assembly

@@ -50,6 +50,13 @@ struct BondWeights {
 };
 BondWeights point_bond_weights(const NonlocalSpace& space, std::span<const char> cells = {});
 
+/// The damage index of each of `cells` (in that order): the mean over the
+/// cell's points of lost / total (point_bond_weights, 0 where total = 0), the
+/// same bits as from point_bond_weights' arrays, with no array longer than
+/// the list (the output's field for the cells it writes). Each cell reads its
+/// own graph row.
+std::vector<double> cell_damage(const NonlocalSpace& space, std::span<const Index> cells);
+
 /// The bonds of the space: unordered pairs of non-local points with
 /// ᾱ c_bond > 0 not crossing a cut, failed ones included (the bonds of the
 /// non-local stiffness before any failure: NonlocalStats::bonds), and the cell

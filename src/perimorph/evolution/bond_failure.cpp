@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
 #include <set>
 
 namespace perimorph::evolution {
@@ -142,23 +143,27 @@ FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bon
   return energy;
 }
 
-FractureFields BondFailure::fields(const RunState& state) const {
-  FractureFields out;
-  const auto ncells = static_cast<std::size_t>(disc_->mesh.num_cells());
-  out.dissipated.assign(ncells, 0.0);
-  for (const auto& [c, d] : state.cell_dissipated) out.dissipated[static_cast<std::size_t>(c)] = d;
-  const auto w = assembly::point_bond_weights(space(state), decides_);
-  const auto& pts = disc_->nonlocal->points;
-  out.damage.assign(ncells, std::nan(""));
-  for (Index c = 0; c < disc_->mesh.num_cells(); ++c) {
-    if (!decides_.empty() && decides_[static_cast<std::size_t>(c)] == 0) continue;
-    double d = 0.0;
-    for (int q = 0; q < pts.per_cell; ++q) {
-      const std::size_t k = pts.index(c, q);
-      d += w.total[k] > 0.0 ? w.lost[k] / w.total[k] : 0.0;
-    }
-    out.damage[static_cast<std::size_t>(c)] = d / pts.per_cell;
+FractureFields BondFailure::fields(const RunState& state, std::span<const Index> cells) const {
+  std::vector<Index> every;
+  if (cells.empty()) {
+    every.resize(static_cast<std::size_t>(disc_->mesh.num_cells()));
+    std::iota(every.begin(), every.end(), Index{0});
+    cells = every;
   }
+  FractureFields out;
+  out.dissipated.reserve(cells.size());
+  for (Index c : cells) {
+    const auto it = state.cell_dissipated.find(c);
+    out.dissipated.push_back(it != state.cell_dissipated.end() ? it->second : 0.0);
+  }
+  // The damage index of the cells this process decides (their graph rows).
+  std::vector<Index> decided;
+  for (Index c : cells)
+    if (decides_.empty() || decides_[static_cast<std::size_t>(c)]) decided.push_back(c);
+  const std::vector<double> d = assembly::cell_damage(space(state), decided);
+  out.damage.assign(cells.size(), std::nan(""));
+  for (std::size_t k = 0, j = 0; k < cells.size(); ++k)
+    if (decides_.empty() || decides_[static_cast<std::size_t>(cells[k])]) out.damage[k] = d[j++];
   return out;
 }
 

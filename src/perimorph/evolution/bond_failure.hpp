@@ -26,7 +26,8 @@ struct FailureEnergy {
   double dissipated = 0.0, overshoot = 0.0;
 };
 
-/// Per-cell fracture fields for the VTU (empty for a run without [fracture]).
+/// Per-cell fracture fields for the VTU (empty for a run without [fracture]),
+/// for the cells it writes, in their order.
 struct FractureFields {
   std::vector<double> damage;      ///< fraction of bond weight lost, mean over the cell's points
   std::vector<double> dissipated;  ///< energy of the failed bonds at s_crit, half to each end's cell
@@ -103,10 +104,11 @@ class BondFailure final : public Component {
   /// `b`'s BondShape (its dofs written into `out.dofs`, reusing its storage).
   void shape_of(const assembly::StretchedBond& b, BondShape& out) const;
 
-  /// Damage index and dissipated energy (at s_crit) per cell, for the VTU.
-  /// On several processes the damage index is that of the cells of this
-  /// process's part (the cells of its piece), NaN elsewhere.
-  FractureFields fields(const RunState& state) const;
+  /// Damage index and dissipated energy (at s_crit) of each of `cells` (in
+  /// that order; every cell if empty), for the VTU. On several processes the
+  /// damage index of a cell of another process's part is NaN (the output asks
+  /// for its piece's cells only, all of them this process's).
+  FractureFields fields(const RunState& state, std::span<const Index> cells = {}) const;
   /// Crack area from the faces between adjacent cells all of whose bonds
   /// have failed (structured meshes; 2D: length × thickness; 1D: the
   /// cross-section). Pre-crack cuts are not counted (their bonds never existed).

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <numeric>
 
 namespace perimorph::evolution {
 
@@ -189,22 +190,27 @@ Effect LocalDamage::apply(RunState& state, system::ConstrainedSystem& system) {
   return Effect::downdate;
 }
 
-DamageFields LocalDamage::fields(const RunState& state) const {
+DamageFields LocalDamage::fields(const RunState& state, std::span<const Index> cells) const {
   const setup::DamageModel& dm = *disc_->damage;
-  const Index ncells = disc_->mesh.num_cells();
+  std::vector<Index> every;
+  if (cells.empty()) {
+    every.resize(static_cast<std::size_t>(disc_->mesh.num_cells()));
+    std::iota(every.begin(), every.end(), Index{0});
+    cells = every;
+  }
   const int npts = dm.points_per_cell;
   const int nv = fem::voigt_size(disc_->dim());
   DamageFields out;
   out.history = state.history;
-  out.mean.assign(static_cast<std::size_t>(ncells), 0.0);
-  out.max.assign(static_cast<std::size_t>(ncells), 0.0);
-  out.dissipated.assign(static_cast<std::size_t>(ncells), 0.0);
+  out.mean.assign(cells.size(), 0.0);
+  out.max.assign(cells.size(), 0.0);
+  out.dissipated.assign(cells.size(), 0.0);
   const assembly::LocalSpace space = disc_->local_space();
   std::vector<double> strain(static_cast<std::size_t>(npts * nv)), volume(static_cast<std::size_t>(npts));
-  for (Index c = 0; c < ncells; ++c) {
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    const Index c = cells[k];
     const int law = dm.law_of(c);
     if (law < 0) continue;
-    const auto k = static_cast<std::size_t>(c);
     bool any = false;
     for (int q = 0; q < npts; ++q) any = any || setup::DamageModel::at(state.history, c, q, npts) > 0.0;
     if (!any) continue;

@@ -13,11 +13,13 @@
 #include "perimorph/evolution/component.hpp"
 #include "perimorph/setup/discretization.hpp"
 
+#include <span>
 #include <vector>
 
 namespace perimorph::evolution {
 
-/// Per-cell damage fields for the VTU (empty for a run without damage).
+/// Per-cell damage fields for the VTU (empty for a run without damage), for
+/// the cells it writes, in their order.
 struct DamageFields {
   std::vector<double> mean;        ///< d, mean over the cell's local quadrature points
   std::vector<double> max;         ///< d, largest over them
@@ -57,7 +59,8 @@ class LocalDamage final : public Component {
   double largest_change() const { return largest_; }
   /// Local quadrature points whose d reached d_c in the last apply (cell, point).
   const std::vector<std::pair<Index, int>>& newly_critical() const { return newly_critical_; }
-  DamageFields fields(const RunState& state) const;
+  /// The damage fields of each of `cells` (in that order; every cell if empty).
+  DamageFields fields(const RunState& state, std::span<const Index> cells = {}) const;
 
  private:
   struct Change {

@@ -299,9 +299,11 @@ void QuasiStaticRun::record(bool force_vtu) {
 void QuasiStaticRun::write_vtu(int increment, bool listed_by_row) {
   if (!output_->writes_vtu()) return;
   // Collective on several processes: each writes its piece (RunOutput).
+  const std::span<const Index> cells = output_->cells_written(*disc_);
   output_->write_increment_vtu(*disc_, increment, state_.load_factor, state_.u,
-                               fracture_ ? fracture_->fields(state_) : evolution::FractureFields{},
-                               damage_ ? damage_->fields(state_) : evolution::DamageFields{}, listed_by_row);
+                               fracture_ ? fracture_->fields(state_, cells) : evolution::FractureFields{},
+                               damage_ ? damage_->fields(state_, cells) : evolution::DamageFields{},
+                               listed_by_row);
 }
 
 void QuasiStaticRun::write_increment() {

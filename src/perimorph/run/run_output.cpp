@@ -143,11 +143,15 @@ std::string RunOutput::failures_csv_path() const {
 io::UnstructuredGrid RunOutput::increment_grid(const setup::Discretization& model, std::span<const double> u,
                                                const evolution::FractureFields& fracture,
                                                const evolution::DamageFields& damage,
-                                               std::span<const char> selected) const {
+                                               std::span<const Index> listed) const {
   const auto& dm = model.dofmap;
-  std::vector<Index> cells;
-  for (Index c = 0; c < dm.num_cells(); ++c)
-    if (selected.empty() || selected[static_cast<std::size_t>(c)]) cells.push_back(c);
+  const bool selected = !listed.empty();
+  std::vector<Index> every;
+  if (!selected) {
+    every.resize(static_cast<std::size_t>(dm.num_cells()));
+    std::iota(every.begin(), every.end(), Index{0});
+  }
+  const std::span<const Index> cells = selected ? listed : std::span<const Index>(every);
   for (Index c : cells)  // their stresses need their C
     PERIMORPH_ASSERT(model.computed_cells.empty() || model.computed_cells[static_cast<std::size_t>(c)],
                      "the output writes a cell whose morphed C this process did not compute");
@@ -159,7 +163,7 @@ io::UnstructuredGrid RunOutput::increment_grid(const setup::Discretization& mode
   // found by search (no array as long as the model's). A DG degree 0 cell is
   // drawn with its own corner points, all carrying its centroid node's displacement.
   std::vector<Index> point_dof_node;
-  if (selected.empty()) {
+  if (!selected) {
     point_dof_node.resize(static_cast<std::size_t>(dm.num_nodes()));
     std::iota(point_dof_node.begin(), point_dof_node.end(), Index{0});
   } else {
@@ -167,7 +171,7 @@ io::UnstructuredGrid RunOutput::increment_grid(const setup::Discretization& mode
   }
   const auto node_points = static_cast<std::ptrdiff_t>(point_dof_node.size());
   auto point_of_node = [&](Index n) {
-    if (selected.empty()) return n;
+    if (!selected) return n;
     const auto first = point_dof_node.begin();
     return static_cast<Index>(std::lower_bound(first, first + node_points, n) - first);
   };
@@ -203,8 +207,7 @@ io::UnstructuredGrid RunOutput::increment_grid(const setup::Discretization& mode
           ? setup::damaged_stiffness(model.stiffness, *model.damage, damage.history)
           : fem::ConstitutiveField(0, 0, 0);
   const auto fields = assembly::cell_strain_stress(
-      model.local_space(), damage.history.empty() ? model.stiffness : damaged, u,
-      selected.empty() ? std::span<const Index>{} : std::span<const Index>(cells));
+      model.local_space(), damage.history.empty() ? model.stiffness : damaged, u, listed);
   const int nv = fem::voigt_size(dim_);
   io::Field strain{"strain", 9, {}}, stress{"stress", 9, {}}, region{"region", 1, {}},
       energy{"strain_energy_density", 1, {}};
@@ -237,10 +240,9 @@ io::UnstructuredGrid RunOutput::increment_grid(const setup::Discretization& mode
     grid.cell_data.push_back(std::move(alpha_cell));
     grid.cell_data.push_back(std::move(kind));
   }
-  auto cell_field = [&](const char* name, const std::vector<double>& whole) {
-    io::Field f{name, 1, {}};
-    for (Index c : cells) f.values.push_back(whole[static_cast<std::size_t>(c)]);
-    grid.cell_data.push_back(std::move(f));
+  auto cell_field = [&](const char* name, const std::vector<double>& values) {  // in the order of `cells`
+    PERIMORPH_ASSERT(values.size() == cells.size(), "a cell field of another length than the cells written");
+    grid.cell_data.push_back(io::Field{name, 1, values});
   };
   if (!fracture.damage.empty()) cell_field("damage", fracture.damage);
   if (!fracture.dissipated.empty()) cell_field("dissipated_energy", fracture.dissipated);
@@ -249,13 +251,23 @@ io::UnstructuredGrid RunOutput::increment_grid(const setup::Discretization& mode
     cell_field("local_damage_max", damage.max);
     cell_field("damage_dissipated_energy", damage.dissipated);
   }
-  if (!selected.empty()) {
+  if (selected) {
     // A piece: each cell's number in the whole mesh.
     io::Field number{"cell", 1, {}};
     for (Index c : cells) number.values.push_back(static_cast<double>(c));
     grid.cell_data.push_back(std::move(number));
   }
   return grid;
+}
+
+std::span<const Index> RunOutput::cells_written(const setup::Discretization& model) {
+  const int processes = la::world_size();
+  if (processes > 1 && piece_cells_.empty()) {
+    const std::vector<char> mine = partition::cells_of_part(model.mesh, processes, la::world_rank());
+    for (Index c = 0; c < model.mesh.num_cells(); ++c)
+      if (mine[static_cast<std::size_t>(c)]) piece_cells_.push_back(c);
+  }
+  return piece_cells_;
 }
 
 void RunOutput::write_increment_vtu(const setup::Discretization& model, int increment, double load_factor,
@@ -269,15 +281,14 @@ void RunOutput::write_increment_vtu(const setup::Discretization& model, int incr
     // Each process writes the cells of its part (the bisection of the
     // stretch pass), then process 0 the index. A failure anywhere removes
     // every process's piece.
-    if (piece_cells_.empty())
-      piece_cells_ = partition::cells_of_part(model.mesh, processes, la::world_rank());
+    const std::span<const Index> cells = cells_written(model);
     const std::string stem = fmt::format("{}_{:04d}", basename_, increment);
     const std::string mine =
         (std::filesystem::path(directory_) / piece_name(stem, la::world_rank())).string();
     try {
       io::UnstructuredGrid piece;
       la::on_every_process([&] {
-        piece = increment_grid(model, u, fracture, damage, piece_cells_);
+        piece = increment_grid(model, u, fracture, damage, cells);
         io::write_vtu(mine, piece);
       });
       la::on_process_zero([&] {

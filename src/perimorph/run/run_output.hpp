@@ -121,6 +121,11 @@ class RunOutput {
   std::string failures_csv_path() const;
   /// [output] vtu (the same on every process).
   bool writes_vtu() const { return vtu_; }
+  /// The cells this process writes in an increment's VTU, ascending: on P > 1
+  /// processes those of its part (partition::cells_of_part), on one empty
+  /// (every cell). The fields passed to write_increment_vtu are theirs, in
+  /// this order.
+  std::span<const Index> cells_written(const setup::Discretization& model);
 
  private:
   std::string directory_, basename_;
@@ -132,15 +137,15 @@ class RunOutput {
   std::optional<io::PvdCollection::Entry> unlisted_;
   std::unique_ptr<io::PvdCollection> pvd_;
   /// This process's cells in a distributed run's VTU pieces (empty until the first).
-  std::vector<char> piece_cells_;
+  std::vector<Index> piece_cells_;
 
-  /// The increment's grid: every cell, or with `selected` (a flag per cell)
-  /// the flagged cells, the points they use and a cell field `cell` (their
-  /// numbers in the whole mesh).
+  /// The increment's grid: every cell, or the cells `listed` (ascending),
+  /// the points they use and a cell field `cell` (their numbers in the whole
+  /// mesh); the fracture and damage fields are those of the cells written.
   io::UnstructuredGrid increment_grid(const setup::Discretization& model, std::span<const double> u,
                                       const evolution::FractureFields& fracture,
                                       const evolution::DamageFields& damage,
-                                      std::span<const char> selected) const;
+                                      std::span<const Index> listed) const;
   /// The VTU piece of process `process` of the increment file STEM.pvtu.
   static std::string piece_name(const std::string& stem, int process);
   /// Removes an increment's VTU, or its .pvtu and every process's piece.
