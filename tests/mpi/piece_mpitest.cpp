@@ -3,8 +3,9 @@
 // neighbours, a mesh of their own numbered locally) and numbers the piece's
 // dof nodes from the piece alone, one prefix sum and one exchange by key
 // (system::piece_distribution). The numbers must be the whole model's
-// (partition::dof_numbering), ghosts included, and the local stiffness
-// assembled on the pieces the whole model's distributed matrix bit for bit.
+// (partition::dof_numbering), ghosts included, the local stiffness
+// assembled on the pieces the whole model's distributed matrix bit for bit,
+// and a Dirichlet problem solved on the pieces the whole model's u.
 
 #include "perimorph/assembly/local_assembly.hpp"
 #include "perimorph/assembly/sparsity.hpp"
