@@ -43,7 +43,8 @@ class SolverError : public Error {
 /// OutputError's).
 class StoppedByProcessZero : public Error {
  public:
-  explicit StoppedByProcessZero(bool output_error) : Error("process 0 stopped the run"), output(output_error) {}
+  explicit StoppedByProcessZero(bool output_error)
+      : Error("process 0 stopped the run"), output(output_error) {}
   bool output;
 };
 
