@@ -1,8 +1,8 @@
 // AtomicFile: the target appears only on commit, whole; an abandoned write
 // leaves neither the target nor the temporary; errors name the file.
 
-#include "perimorph/core/error.hpp"
 #include "perimorph/io/atomic_file.hpp"
+#include "perimorph/core/error.hpp"
 
 #include <gtest/gtest.h>
 
@@ -51,7 +51,8 @@ TEST(IoAtomicFile, UnwritableDirectoryIsAnErrorNamingTheFile) {
     io::AtomicFile f("/nonexistent-directory/out.vtu");
     FAIL() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("/nonexistent-directory/out.vtu.tmp"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("/nonexistent-directory/out.vtu.tmp"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -149,9 +149,9 @@ TEST(DofLayout, OwnerComputesGivesTheSerialRowsBitForBit) {
     // The non-local points of the cells those rows reach alone, as a process
     // stores them; a cache representative of another part's is made again
     // from the mesh (NonlocalSpace::alpha).
-    const bonds::NonlocalPoints part_points = bonds::make_nonlocal_points(
-        m.mesh, m.config.nonlocal.quadrature, m.scale, m.nonlocal->alpha, m.nonlocal->points.partial_volume(),
-        part_graph.cells_in_rows(touching));
+    const bonds::NonlocalPoints part_points =
+        bonds::make_nonlocal_points(m.mesh, m.config.nonlocal.quadrature, m.scale, m.nonlocal->alpha,
+                                    m.nonlocal->points.partial_volume(), part_graph.cells_in_rows(touching));
     ASSERT_LT(part_points.stored.size(), static_cast<std::size_t>(m.mesh.num_cells()));
     assembly::NonlocalSpace part_space{m.mesh, m.dofmap, part_points, part_graph, m.nonlocal->kernel};
     part_space.alpha = &m.nonlocal->alpha;

@@ -156,7 +156,8 @@ TEST(Anisotropy, PlanarRoundTripPlaneStrainAndStressRotated) {
         }
         const double err = rel_diff(integrate_bulk_tensor(c, 2), C2);
         std::printf("2D planar round trip, plane %s, %s kernel, axes at %.1f rad: %.2e\n",
-                    mode == PlaneMode::strain ? "strain" : "stress", peridynamics::to_string(shape), angle, err);
+                    mode == PlaneMode::strain ? "strain" : "stress", peridynamics::to_string(shape), angle,
+                    err);
         EXPECT_LT(err, 1e-10);
       }
     }
