@@ -22,6 +22,7 @@
 #include "perimorph/mesh/box.hpp"
 #include "perimorph/partition/dof_layout.hpp"
 #include "perimorph/system/piece_distribution.hpp"
+#include "perimorph/system/stiffness.hpp"
 #include "support/pieces.hpp"
 
 #include <gtest/gtest.h>
@@ -114,11 +115,7 @@ TEST_P(Pieces, AssembleTheWholeModelsMatrixBitForBit) {
   const dofs::DofMap dm(whole, whole.dim(), flags);
   const int parts = la::world_size(), part = la::world_rank();
   const auto p = partition::coordinate_bisection(whole, parts);
-  auto whole_d = std::make_shared<la::Distribution>();
-  const auto layout = partition::dof_numbering(dm, p);
-  whole_d->to_distributed = layout.to_distributed;
-  whole_d->begin = layout.part_offsets[static_cast<std::size_t>(part)];
-  whole_d->end = layout.part_offsets[static_cast<std::size_t>(part) + 1];
+  const auto whole_d = system::distribution_of(partition::dof_numbering(dm, p), part);
   const auto piece = testing::make_piece(whole, flags, p, part, whole.dim());
 
   const Rows expected = owned_rows(assemble(whole, dm, whole_d, [](Index c) { return c; }));
@@ -164,11 +161,7 @@ TEST_P(Pieces, SolveADirichletProblemAsTheWholeModelHoldingUAtTheirNodesOnly) {
   const dofs::DofMap dm(whole, whole.dim(), cg);
   const int parts = la::world_size(), part = la::world_rank();
   const auto p = partition::coordinate_bisection(whole, parts);
-  auto whole_d = std::make_shared<la::Distribution>();
-  const auto layout = partition::dof_numbering(dm, p);
-  whole_d->to_distributed = layout.to_distributed;
-  whole_d->begin = layout.part_offsets[static_cast<std::size_t>(part)];
-  whole_d->end = layout.part_offsets[static_cast<std::size_t>(part) + 1];
+  const auto whole_d = system::distribution_of(partition::dof_numbering(dm, p), part);
   const auto piece = testing::make_piece(whole, cg, p, part, whole.dim());
 
   const auto expected = solve(whole, dm, whole_d, [](Index c) { return c; });

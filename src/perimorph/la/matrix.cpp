@@ -329,16 +329,8 @@ double Matrix::nonzeros() const {
 
 void Matrix::visit_rows(
     const std::function<void(Index, std::span<const Index>, std::span<const double>)>& visit) const {
-  release_view();
-  const Index n = rows();
-  for (PetscInt r = 0; r < n; ++r) {
-    PetscInt ncols = 0;
-    const PetscInt* cols = nullptr;
-    const PetscScalar* vals = nullptr;
-    PM_PETSC(MatGetRow(m_, r, &ncols, &cols, &vals));
-    visit(r, {cols, static_cast<std::size_t>(ncols)}, {vals, static_cast<std::size_t>(ncols)});
-    PM_PETSC(MatRestoreRow(m_, r, &ncols, &cols, &vals));
-  }
+  PERIMORPH_ASSERT(!distribution_, "visit_rows reads every row: a matrix of one process");
+  visit_owned_rows(visit);  // one process owns every row
 }
 
 assembly::SparsityPattern Matrix::block_pattern() const {

@@ -89,8 +89,9 @@ class Matrix final : public assembly::MatrixInserter {
   /// Number of stored non-zeros (allocated = used after finalize).
   double nonzeros() const;
   /// Calls visit(row, columns, values) for every row in order, with the
-  /// stored entries of the row (columns ascending). The spans are valid only
-  /// during the call.
+  /// stored entries of the row (columns ascending): a matrix without a
+  /// distribution (visit_owned_rows for a distributed one). The spans are
+  /// valid only during the call.
   void visit_rows(
       const std::function<void(Index, std::span<const Index>, std::span<const double>)>& visit) const;
   /// Calls visit(row, columns, values) for every row this process owns, in

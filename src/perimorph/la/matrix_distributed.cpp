@@ -175,17 +175,10 @@ Eigen::MatrixXd Matrix::distributed_to_dense() const {
   const std::vector<Index> to_assembly = assembly_rows();
   const auto n = static_cast<Index>(to_assembly.size());
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
-  PetscInt first = 0, last = 0;
-  PM_PETSC(MatGetOwnershipRange(m_, &first, &last));
-  for (PetscInt r = first; r < last; ++r) {
-    PetscInt ncols = 0;
-    const PetscInt* cols = nullptr;
-    const PetscScalar* vals = nullptr;
-    PM_PETSC(MatGetRow(m_, r, &ncols, &cols, &vals));
-    for (PetscInt k = 0; k < ncols; ++k)
+  visit_owned_rows([&](Index r, std::span<const Index> cols, std::span<const double> vals) {
+    for (std::size_t k = 0; k < cols.size(); ++k)
       A(to_assembly[static_cast<std::size_t>(r)], to_assembly[static_cast<std::size_t>(cols[k])]) = vals[k];
-    PM_PETSC(MatRestoreRow(m_, r, &ncols, &cols, &vals));
-  }
+  });
   MPI_Allreduce(MPI_IN_PLACE, A.data(), static_cast<int>(A.size()), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
   return A;
 }
