@@ -117,6 +117,8 @@ void piece(benchmark::State& state) {
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
+  // No PETSc option is read here: anything left is a mistake, not an option.
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
   la::PetscSession petsc(argc, argv);
   benchmark::AddCustomContext("processes", std::to_string(la::world_size()));
   for (int n : {40, 80}) {
