@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <set>
 #include <string>
 #include <vector>
@@ -253,6 +254,22 @@ TEST(MeshBox, NodesOfSet) {
   const auto names = m.set_names();
   EXPECT_TRUE(std::is_sorted(names.begin(), names.end()));
   EXPECT_EQ(std::adjacent_find(names.begin(), names.end()), names.end());
+}
+
+/// A cell of the box alone has the box's corners bit for bit (awkward
+/// bounds, so that the expression matters), in the mesh's order.
+TEST(MeshBox, ACellAloneHasTheBoxsCornersBitForBit) {
+  for (int dim : {1, 2, 3}) {
+    const Mesh m = make_box({dim, Vec3(-0.3, 0.1, 1.7), Vec3(2.9, 1.3, 2.3), {7, 3, 5}});
+    ASSERT_TRUE(m.structure.has_value());
+    for (Index c = 0; c < m.num_cells(); ++c) {
+      const Mesh one = box_cell_mesh(*m.structure, dim, c);
+      ASSERT_EQ(one.num_cells(), 1);
+      for (std::size_t a = 0; a < m.cell(c).size(); ++a)
+        EXPECT_EQ(std::memcmp(one.node(one.cell(0)[a]).data(), m.node(m.cell(c)[a]).data(), sizeof(Vec3)), 0)
+            << "dim " << dim << ", cell " << c << ", corner " << a;
+    }
+  }
 }
 
 }  // namespace

@@ -55,8 +55,17 @@ TEST(PartMesh, SetsKeepTheirNamesAndThePiecesMembers) {
   EXPECT_EQ(piece.mesh.set_names(), whole.set_names());
   EXPECT_TRUE(piece.mesh.node_sets.at("ymax").empty());
   EXPECT_TRUE(piece.mesh.face_sets.at("ymax").empty());
-  EXPECT_TRUE(whole.structure.has_value());
-  EXPECT_FALSE(piece.mesh.structure.has_value());
+  ASSERT_TRUE(whole.structure.has_value());
+  ASSERT_TRUE(piece.mesh.structure.has_value());
+  // The layout is kept, each local cell its box cell's (i, j, k).
+  EXPECT_EQ(piece.mesh.structure->box_cells, cells);
+  for (Index l = 0; l < piece.mesh.num_cells(); ++l)
+    EXPECT_EQ(piece.mesh.structure->cell_ijk(l),
+              whole.structure->cell_ijk(piece.global_cell[static_cast<std::size_t>(l)]));
+  // A piece of a piece keeps the box's numbers.
+  const std::vector<Index> local{0, 2};
+  const auto inner = mesh::part_mesh(piece.mesh, local);
+  EXPECT_EQ(inner.mesh.structure->box_cells, (std::vector<Index>{0, 7}));
   for (const auto& [name, set] : whole.node_sets) {
     std::vector<Index> expected;
     for (Index n : set)

@@ -14,7 +14,7 @@
 #include "perimorph/partition/dof_layout.hpp"
 #include "perimorph/setup/discretization.hpp"
 #include "perimorph/setup/nonlocal_setup.hpp"
-#include "support/cases.hpp"
+#include "support/model_cases.hpp"
 
 #include <gtest/gtest.h>
 
@@ -26,24 +26,6 @@
 
 namespace perimorph {
 namespace {
-
-struct Named {
-  std::string name;
-  casefile::CaseConfig config;
-};
-
-std::vector<Named> cases() {
-  const std::string examples = std::string(PERIMORPH_SOURCE_DIR) + "/examples/";
-  auto ball3d = testing::box_case(3, {6, 6, 6}, Vec3(3.0, 3.0, 3.0), 100.0, 0.25);
-  testing::add_nonlocal(ball3d, casefile::KernelKind::constant, 1.0, 0.0, 2,
-                        casefile::Discretization::discontinuous_constant);
-  ball3d.alpha.regions = {testing::alpha_ball(Vec3(1.5, 1.5, 1.5), 1.0, 0.6)};
-  ball3d.nonlocal.horizon_edge = casefile::HorizonEdge::partial_volume;
-  return {{"mixed CG/DG plate", testing::mixed_cg_dg_plate()},
-          {"3D ball, DG degree 0, partial volume", ball3d},
-          {"b3 (cut, CG)", casefile::parse_case_file(examples + "b3_cracked_plate_2d/case.toml")},
-          {"flagship (holes, DG)", casefile::parse_case_file(examples + "hole_plate_2d/case.toml")}};
-}
 
 bool bitwise_equal(const double* a, const double* b, int n) {
   return std::memcmp(a, b, static_cast<std::size_t>(n) * sizeof(double)) == 0;
@@ -118,28 +100,8 @@ Index expect_part_of(const setup::Discretization& part, const setup::Discretizat
   return absent;
 }
 
-/// ModelPart::share_flags, simulated on one process: each part's own flags
-/// (the computed cells', 0 elsewhere) are checked against the whole model's
-/// and kept for their maximum over the parts; the whole model's flags are
-/// given back, as the maximum over the processes would be.
-struct SharedFlags {
-  const std::vector<char>* whole = nullptr;
-  std::vector<char> over_parts;  // the elementwise maximum of the parts' own flags
-  std::function<std::vector<char>(std::vector<char>)> share() {
-    return [this](std::vector<char> mine) {
-      EXPECT_EQ(mine.size(), whole->size());
-      if (over_parts.empty()) over_parts.assign(mine.size(), 0);
-      for (std::size_t c = 0; c < mine.size() && c < whole->size(); ++c) {
-        EXPECT_LE(mine[c], (*whole)[c]) << "cell " << c;
-        over_parts[c] = std::max(over_parts[c], mine[c]);
-      }
-      return *whole;
-    };
-  }
-};
-
 TEST(ModelPart, APartComputesTheCellsItAssemblesBitForBitAndNoOthers) {
-  for (const auto& [name, config] : cases()) {
+  for (const auto& [name, config] : testing::model_part_cases()) {
     SCOPED_TRACE(name);
     const auto whole = setup::build_discretization(config);
     ASSERT_TRUE(whole.computed_cells.empty());
@@ -151,7 +113,7 @@ TEST(ModelPart, APartComputesTheCellsItAssemblesBitForBitAndNoOthers) {
       const auto p = partition::coordinate_bisection(whole.mesh, parts);
       const auto layout = partition::dof_layout(whole.dofmap, p, whole.nonlocal->graph);
       Index computed_total = 0;
-      SharedFlags flags{&whole.nonlocal->morph.purely_nonlocal, {}};
+      testing::SharedFlags flags{&whole.nonlocal->morph.purely_nonlocal, {}};
       for (int q = 0; q < parts; ++q) {
         const auto part = setup::build_discretization(config, {}, {parts, q, flags.share()});
         ASSERT_EQ(part.computed_cells.size(), static_cast<std::size_t>(ncells));
@@ -184,7 +146,7 @@ TEST(ModelPart, ARebuildForAGrownAlphaKeepsThePart) {
   wide.alpha.regions.front().radius += 1.5;
   const auto grown = setup::make_alpha_field(wide);
   const auto rebuilt_whole = setup::rebuild_for_alpha(whole, grown);
-  SharedFlags flags{&whole.nonlocal->morph.purely_nonlocal, {}};
+  testing::SharedFlags flags{&whole.nonlocal->morph.purely_nonlocal, {}};
   const auto part = setup::build_discretization(config, {}, {3, 1, flags.share()});
   flags.whole = &rebuilt_whole.nonlocal->morph.purely_nonlocal;  // the rebuild shares the grown model's
   flags.over_parts.clear();
@@ -201,7 +163,7 @@ TEST(ModelPart, ARebuildForAGrownAlphaKeepsThePart) {
 // (its own cells and their graph neighbours), of the cells it writes and
 // strains, and every node it owns; not the whole model's.
 TEST(ModelPart, APartReadsTheDisplacementOfItsHaloOnly) {
-  for (const auto& [name, config] : cases()) {
+  for (const auto& [name, config] : testing::model_part_cases()) {
     SCOPED_TRACE(name);
     const auto whole = setup::build_discretization(config);
     const Index nodes = whole.dofmap.num_nodes();
@@ -214,7 +176,7 @@ TEST(ModelPart, APartReadsTheDisplacementOfItsHaloOnly) {
       const auto layout = partition::dof_layout(whole.dofmap, p, whole.nonlocal->graph);
       std::size_t total = 0;
       for (int q = 0; q < parts; ++q) {
-        SharedFlags flags{&whole.nonlocal->morph.purely_nonlocal, {}};
+        testing::SharedFlags flags{&whole.nonlocal->morph.purely_nonlocal, {}};
         const auto part = setup::build_discretization(config, {}, {parts, q, flags.share()});
         const std::vector<Index> read = setup::nodes_read(part);
         ASSERT_TRUE(std::is_sorted(read.begin(), read.end()));

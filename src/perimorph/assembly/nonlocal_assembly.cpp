@@ -9,6 +9,7 @@
 #include "perimorph/dofs/dof_map.hpp"
 #include "perimorph/fem/quadrature.hpp"
 #include "perimorph/fem/shape.hpp"
+#include "perimorph/mesh/box.hpp"
 #include "perimorph/mesh/mesh.hpp"
 #include "perimorph/peridynamics/pair_kernel.hpp"
 
@@ -37,13 +38,15 @@ using OffsetKey = std::array<long, 5>;
 
 constexpr int max_points = 216;
 
-/// NonlocalOptions::min_over_processes: each key's representative becomes the
-/// first pair (e, f), e ≤ f, in the whole graph's order, the smallest e·N + f
-/// over the processes. A slot per key (offset and node counts) in a box of
+/// NonlocalOptions::min_over_processes: each key's representative (a pair of
+/// box cells, StructuredLayout::box_cell) becomes the first pair (e, f),
+/// e ≤ f, in the whole graph's order, the smallest e·N + f over the processes
+/// (N the box's cells). A slot per key (offset and node counts) in a box of
 /// offsets every process agrees on, so the reduction's size does not grow with
 /// the processes.
 void first_pairs_over_processes(const std::map<OffsetKey, long>& cache_index,
-                                std::vector<std::pair<Index, Index>>& representatives, Index ncells, int dim,
+                                std::vector<std::pair<Index, Index>>& representatives,
+                                const mesh::StructuredLayout& layout, int dim,
                                 const NonlocalOptions& options) {
   long reach = 0;
   for (const auto& entry : cache_index)
@@ -61,16 +64,17 @@ void first_pairs_over_processes(const std::map<OffsetKey, long>& cache_index,
   long slots = nodes * nodes;
   for (int a = 0; a < dim; ++a) slots *= width;
   const auto none = std::numeric_limits<long long>::max();
+  const auto n = static_cast<long long>(layout.num_box_cells());
   std::vector<long long> first(static_cast<std::size_t>(slots), none);
   for (const auto& [key, r] : cache_index) {
     const auto& [e, f] = representatives[static_cast<std::size_t>(r)];
-    first[slot(key)] = static_cast<long long>(e) * ncells + f;
+    first[slot(key)] = static_cast<long long>(e) * n + f;
   }
   first = options.min_over_processes(std::move(first));
   for (const auto& [key, r] : cache_index) {
     const long long pair = first[slot(key)];
-    representatives[static_cast<std::size_t>(r)] = {static_cast<Index>(pair / ncells),
-                                                    static_cast<Index>(pair % ncells)};
+    representatives[static_cast<std::size_t>(r)] = {static_cast<Index>(pair / n),
+                                                    static_cast<Index>(pair % n)};
   }
 }
 
@@ -161,23 +165,14 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
     // The pieces a bond between e and f can cross (bonds::CutNeighborhood).
     thread_local std::vector<Cut> cut_buffer;
     const auto cuts = near(e, f) ? near_cut.near_pair(e, f, cut_buffer) : std::span<const Cut>{};
-    if (!plain && pts.holds(e) && pts.holds(f))
+    if (!plain)
       return peridynamics::pair_stiffness<D>(cell_points(e), cell_points(f), e == f, s.kernel, cuts, unit,
                                              block, broken_in(e, f));
-    // Points made again: every cell's in the plain version; else a
-    // translation-cache representative from another process's part
-    // (NonlocalOptions::min_over_processes), whose cells this process may not
-    // store, from the mesh (the same bits).
-    PERIMORPH_ASSERT(plain || s.alpha != nullptr, "a cell pair outside the part needs NonlocalSpace::alpha");
+    // The plain version: both cells' points made again from the mesh.
     auto points_of = [&](Index c, PointBuffer& b) {
-      if (!plain && pts.holds(c)) return cell_points(c);
-      if (plain)
-        recompute_points(s.mesh, c, rule, s.scale, *s.alpha, b);
-      else
-        bonds::compute_cell_points(s.mesh, c, pts.rule, pts.line_weights, pts.scale, *s.alpha, b.x.data(),
-                                   b.weight.data(), b.alpha.data(), b.half.data());
+      recompute_points(s.mesh, c, rule, s.scale, *s.alpha, b);
       peridynamics::CellPoints p = cell_shape(c);
-      p.half = !pts.partial_volume() ? nullptr : plain ? pts.half.data() + pts.first(c) : b.half.data();
+      p.half = pts.partial_volume() ? pts.half.data() + pts.first(c) : nullptr;
       p.x = b.x.data();
       p.weight = b.weight.data();
       p.alpha = b.alpha.data();
@@ -192,10 +187,12 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
                                 static_cast<std::size_t>(2 * peridynamics::max_cell_nodes * D);
 
   auto included = [&](Index e, Index f) { return !options.include_pair || options.include_pair(e, f); };
-  // Translation cache: one representative pair per distinct key.
+  // Translation cache: one representative pair per distinct key, a pair of
+  // box cells (StructuredLayout::box_cell), with a pair of this mesh's cells
+  // of the same key (their node counts).
   const bool use_cache = options.translation_cache && s.mesh.structure.has_value();
   std::map<OffsetKey, long> cache_index;
-  std::vector<std::pair<Index, Index>> representatives;
+  std::vector<std::pair<Index, Index>> representatives, local_pairs;
   auto key_of = [&](Index e, Index f) {
     const auto a = s.mesh.structure->cell_ijk(e), b = s.mesh.structure->cell_ijk(f);
     return OffsetKey{b[0] - a[0], b[1] - a[1], b[2] - a[2], static_cast<long>(s.dofmap.cell_nodes(e).size()),
@@ -229,17 +226,44 @@ NonlocalStats assemble_dim(const NonlocalSpace& s, MatrixInserter& K, const Nonl
     for_each_pair(0, ncells, [&](Index e, Index f) {
       if (!cacheable(e, f) || !included(e, f)) return;
       auto [it, added] = cache_index.emplace(key_of(e, f), static_cast<long>(representatives.size()));
-      if (added) representatives.emplace_back(e, f);
+      if (!added) return;
+      local_pairs.emplace_back(e, f);
+      representatives.emplace_back(s.mesh.structure->box_cell(e), s.mesh.structure->box_cell(f));
     });
     if (options.min_over_processes)
-      first_pairs_over_processes(cache_index, representatives, ncells, D, options);
+      first_pairs_over_processes(cache_index, representatives, *s.mesh.structure, D, options);
   }
+  // A representative's block from its two box cells alone
+  // (mesh::box_cell_mesh: the box's corners, bit for bit), their points made
+  // as make_nonlocal_points makes them, α = 1 at every one (a cacheable pair's
+  // α bounds are 1): the same bits whichever process computes it, whether or
+  // not its piece holds the cells.
+  auto compute_representative = [&](std::size_t r, double* block) {
+    const auto [be, bf] = representatives[r];
+    const auto [e, f] = local_pairs[r];  // the same key: the same node counts
+    static const alpha::AlphaField unit_alpha = alpha::AlphaField::constant(1.0);
+    auto points_of = [&](Index box_cell, Index c, PointBuffer& b) {
+      const mesh::Mesh one = mesh::box_cell_mesh(*s.mesh.structure, D, box_cell);
+      bonds::compute_cell_points(one, 0, pts.rule, pts.line_weights, pts.scale, unit_alpha, b.x.data(),
+                                 b.weight.data(), b.alpha.data(), b.half.data());
+      peridynamics::CellPoints p = cell_shape(c);
+      p.half = pts.partial_volume() ? b.half.data() : nullptr;
+      p.x = b.x.data();
+      p.weight = b.weight.data();
+      p.alpha = b.alpha.data();
+      return p;
+    };
+    PointBuffer bufe, buff;
+    const peridynamics::CellPoints pe = points_of(be, e, bufe);
+    const peridynamics::CellPoints pf = be == bf ? pe : points_of(bf, f, buff);
+    return peridynamics::pair_stiffness<D>(pe, pf, be == bf, s.kernel, {}, options.unit_alpha_shortcut, block,
+                                           {});
+  };
   std::vector<double> cache_blocks(representatives.size() * max_block);
   std::vector<std::size_t> cache_bonds(representatives.size());
 #pragma omp parallel for schedule(dynamic, 4)
   for (std::size_t r = 0; r < representatives.size(); ++r)
-    cache_bonds[r] =
-        compute(representatives[r].first, representatives[r].second, cache_blocks.data() + r * max_block);
+    cache_bonds[r] = compute_representative(r, cache_blocks.data() + r * max_block);
 
   NonlocalStats stats;
   stats.distinct_blocks = representatives.size();

@@ -80,7 +80,9 @@ struct NonlocalOptions {
   bool unit_alpha_shortcut = true;
   /// On a structured grid, pairs with α ≡ 1 on both cells, away from cuts,
   /// depend only on the cells' relative offset: each distinct block is
-  /// computed once and reused.
+  /// computed once and reused. It is computed from a representative pair of
+  /// box cells alone (mesh::box_cell_mesh), so a piece of the box
+  /// (mesh::part_mesh) computes any representative, held or not.
   bool translation_cache = true;
   /// Only the cell pairs (e, f), e ≤ f, for which this holds (all if empty):
   /// the contribution of some cells, for an update in place
@@ -101,8 +103,9 @@ struct NonlocalOptions {
   /// serial matrix's blocks, bit for bit. `min_over_processes`, the
   /// elementwise minimum over the processes (collective; la::), is called
   /// twice: for the largest offset, then for each key's first pair (e·N + f
-  /// in a slot per key). Only this process's included pairs are read: no
-  /// pass over the whole graph.
+  /// in box cells, StructuredLayout::box_cell, in a slot per key). Only this
+  /// process's included pairs are read: no pass over the whole graph, and the
+  /// representative's cells need not be in this process's mesh.
   std::function<std::vector<long long>(std::vector<long long>)> min_over_processes{};
 };
 

@@ -3,6 +3,8 @@
 #include "perimorph/core/error.hpp"
 #include "perimorph/mesh/mesh.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -48,6 +50,24 @@ CellGraph CellGraph::rows_of(std::span<const char> cells) const {
       g.neighbors.insert(g.neighbors.end(), r.begin(), r.end());
     }
     g.offsets[static_cast<std::size_t>(c) + 1] = static_cast<Index>(g.neighbors.size());
+  }
+  return g;
+}
+
+CellGraph CellGraph::renumbered(std::span<const Index> cells) const {
+  PERIMORPH_ASSERT(std::is_sorted(cells.begin(), cells.end()), "renumbered: cells in ascending order");
+  CellGraph g;
+  g.offsets.reserve(cells.size() + 1);
+  g.offsets.push_back(0);
+  for (Index c : cells) {
+    for (Index f : row(c)) {
+      const auto it = std::lower_bound(cells.begin(), cells.end(), f);
+      if (it == cells.end() || *it != f)
+        throw Error(
+            fmt::format("cell graph: cell {} in the row of cell {} is not among the listed cells", f, c));
+      g.neighbors.push_back(static_cast<Index>(it - cells.begin()));  // ascending: the rows stay sorted
+    }
+    g.offsets.push_back(static_cast<Index>(g.neighbors.size()));
   }
   return g;
 }

@@ -41,6 +41,11 @@ struct CellGraph {
   /// a process of a distributed run needs of the graph (issue 17); a reader of
   /// only the flagged rows gets the same from it as from the whole graph.
   CellGraph rows_of(std::span<const char> cells) const;
+  /// The rows of the listed cells (ascending, each once), renumbered: cell k
+  /// of the result is cells[k], and so are the neighbours. A process's piece
+  /// of a model (setup::cut_to_piece). Throws Error for a neighbour not
+  /// listed.
+  CellGraph renumbered(std::span<const Index> cells) const;
   /// The flagged cells and every cell in their rows (one flag per cell): the
   /// cells whose non-local points a reader of those rows needs.
   std::vector<char> cells_in_rows(std::span<const char> cells) const;

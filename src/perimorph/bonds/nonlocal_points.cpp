@@ -158,6 +158,44 @@ void point_positions(const mesh::Mesh& mesh, const NonlocalPoints& points, Index
                       nullptr, nullptr);
 }
 
+NonlocalPoints points_of_cells(const NonlocalPoints& p, std::span<const Index> cells) {
+  PERIMORPH_ASSERT(std::is_sorted(cells.begin(), cells.end()), "points_of_cells: cells in ascending order");
+  NonlocalPoints out;
+  out.dim = p.dim;
+  out.per_cell = p.per_cell;
+  out.shape = p.shape;
+  out.half_bound = p.half_bound;
+  out.rule = p.rule;
+  out.line_weights = p.line_weights;
+  out.scale = p.scale;
+  out.slot.assign(cells.size(), -1);
+  const auto per = static_cast<std::size_t>(p.per_cell);
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    const Index c = cells[k];
+    PERIMORPH_ASSERT(c >= 0 && c < p.num_cells(), "points_of_cells: a cell of the points");
+    out.cell_alpha_max.push_back(p.cell_alpha_max[static_cast<std::size_t>(c)]);
+    out.cell_alpha_min.push_back(p.cell_alpha_min[static_cast<std::size_t>(c)]);
+    if (!p.holds(c)) continue;
+    out.slot[k] = static_cast<Index>(out.stored.size());
+    out.stored.push_back(static_cast<Index>(k));
+    const std::size_t from = p.index(c, 0);
+    out.x.insert(out.x.end(), p.x.begin() + static_cast<std::ptrdiff_t>(from),
+                 p.x.begin() + static_cast<std::ptrdiff_t>(from + per));
+    out.weight.insert(out.weight.end(), p.weight.begin() + static_cast<std::ptrdiff_t>(from),
+                      p.weight.begin() + static_cast<std::ptrdiff_t>(from + per));
+    out.alpha.insert(out.alpha.end(), p.alpha.begin() + static_cast<std::ptrdiff_t>(from),
+                     p.alpha.begin() + static_cast<std::ptrdiff_t>(from + per));
+    if (!p.half.empty())
+      out.half.insert(out.half.end(), p.half.begin() + static_cast<std::ptrdiff_t>(from),
+                      p.half.begin() + static_cast<std::ptrdiff_t>(from + per));
+  }
+  if (out.stored.size() == cells.size()) {  // every cell's: the plain layout
+    out.stored.clear();
+    out.slot.clear();
+  }
+  return out;
+}
+
 Vec3 point_position(const mesh::Mesh& mesh, const NonlocalPoints& points, Index c, int q) {
   if (points.holds(c)) return points.x[points.index(c, q)];
   std::array<Vec3, max_points> x;

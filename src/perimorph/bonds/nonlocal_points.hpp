@@ -91,6 +91,12 @@ NonlocalPoints make_nonlocal_points(const mesh::Mesh& mesh, int n_per_direction,
 void store_points(NonlocalPoints& p, const mesh::Mesh& mesh, const alpha::AlphaField& alpha,
                   std::span<const char> cells);
 
+/// The points of the listed cells (ascending, each once): cell k of the
+/// result is cells[k], its α bounds, and its points if `p` stores them (the
+/// same bits); half_bound, shape and rule are `p`'s (bounds over every cell
+/// of the model). A process's piece of a model (setup::cut_to_piece).
+NonlocalPoints points_of_cells(const NonlocalPoints& p, std::span<const Index> cells);
+
 /// Position of point q of cell c, stored or not (recomputed from the mesh
 /// with the same expressions: the stored value, bit for bit).
 Vec3 point_position(const mesh::Mesh& mesh, const NonlocalPoints& points, Index c, int q);

@@ -30,6 +30,12 @@ class ConstitutiveField {
   /// Cell c uses one tensor per point (points_per_cell of them, in order).
   void set_cell_points(Index c, std::span<const Eigen::MatrixXd> C);
 
+  /// The field of the listed cells (each a cell of this field): cell k of the
+  /// result is cells[k], its tensors copied (the same bits), a tensor shared
+  /// by several listed cells shared again. A process's piece of a model
+  /// (setup::cut_to_piece).
+  ConstitutiveField cells_of(std::span<const Index> cells) const;
+
   /// Adds T to every stored tensor, so to C at every point of every cell.
   void add_to_all(const Eigen::MatrixXd& T);
 

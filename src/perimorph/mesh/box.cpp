@@ -17,22 +17,18 @@ Mesh make_box(const BoxSpec& spec) {
     nn[static_cast<std::size_t>(d)] = n[static_cast<std::size_t>(d)] + 1;
   }
   auto node_id = [&](Index i, Index j, Index k) { return i + nn[0] * (j + nn[1] * k); };
+  StructuredLayout layout;
+  layout.cells = n;
+  layout.origin = spec.lower;
+  layout.upper = spec.upper;
+  for (int d = 0; d < dim; ++d)
+    layout.spacing[d] = (spec.upper[d] - spec.lower[d]) / static_cast<double>(n[static_cast<std::size_t>(d)]);
 
   std::vector<Vec3> nodes;
   nodes.reserve(static_cast<std::size_t>(nn[0] * nn[1] * nn[2]));
   for (Index k = 0; k < nn[2]; ++k)
     for (Index j = 0; j < nn[1]; ++j)
-      for (Index i = 0; i < nn[0]; ++i) {
-        const std::array<Index, 3> ijk{i, j, k};
-        Vec3 x = Vec3::Zero();
-        for (int d = 0; d < dim; ++d) {
-          const auto du = static_cast<std::size_t>(d);
-          // Last node exactly on the upper bound (no accumulated round-off).
-          const double t = static_cast<double>(ijk[du]) / static_cast<double>(n[du]);
-          x[d] = ijk[du] == n[du] ? spec.upper[d] : spec.lower[d] + t * (spec.upper[d] - spec.lower[d]);
-        }
-        nodes.push_back(x);
-      }
+      for (Index i = 0; i < nn[0]; ++i) nodes.push_back(box_node(layout, dim, {i, j, k}));
 
   const int npc = nodes_per_cell(cell_type_of_dim(dim));
   std::vector<Index> cells;
@@ -78,13 +74,33 @@ Mesh make_box(const BoxSpec& spec) {
   std::vector<Index> all(static_cast<std::size_t>(mesh.num_cells()));
   for (Index c = 0; c < mesh.num_cells(); ++c) all[static_cast<std::size_t>(c)] = c;
   mesh.cell_sets["all"] = std::move(all);
-  StructuredLayout layout;
-  layout.cells = n;
-  layout.origin = spec.lower;
-  for (int d = 0; d < dim; ++d)
-    layout.spacing[d] = (spec.upper[d] - spec.lower[d]) / static_cast<double>(n[static_cast<std::size_t>(d)]);
   mesh.structure = layout;
   return mesh;
+}
+
+Vec3 box_node(const StructuredLayout& layout, int dim, const std::array<Index, 3>& ijk) {
+  Vec3 x = Vec3::Zero();
+  for (int d = 0; d < dim; ++d) {
+    const auto du = static_cast<std::size_t>(d);
+    const Index n = layout.cells[du];
+    // Last node exactly on the upper bound (no accumulated round-off).
+    const double t = static_cast<double>(ijk[du]) / static_cast<double>(n);
+    x[d] = ijk[du] == n ? layout.upper[d] : layout.origin[d] + t * (layout.upper[d] - layout.origin[d]);
+  }
+  return x;
+}
+
+Mesh box_cell_mesh(const StructuredLayout& layout, int dim, Index b) {
+  PERIMORPH_ASSERT(b >= 0 && b < layout.num_box_cells(), "a cell of the box");
+  const auto [i, j, k] = layout.box_cell_ijk(b);
+  const int npc = nodes_per_cell(cell_type_of_dim(dim));
+  std::vector<Vec3> corners;
+  std::vector<Index> cell;
+  for (int a = 0; a < npc; ++a) {
+    corners.push_back(box_node(layout, dim, {i + (a & 1), j + ((a >> 1) & 1), k + ((a >> 2) & 1)}));
+    cell.push_back(a);
+  }
+  return Mesh(dim, std::move(corners), std::move(cell));
 }
 
 }  // namespace perimorph::mesh

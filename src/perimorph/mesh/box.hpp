@@ -20,4 +20,14 @@ struct BoxSpec {
 /// "boundary", cell set "all".
 Mesh make_box(const BoxSpec& spec);
 
+/// Node (i, j, k) of the box of `layout` in `dim` dimensions, as make_box
+/// places it (the same expression: the same bits).
+Vec3 box_node(const StructuredLayout& layout, int dim, const std::array<Index, 3>& ijk);
+
+/// Box cell b of `layout` alone, as a mesh of one cell whose corners are
+/// make_box's, bit for bit, in make_box's order: what a process needs of a
+/// cell outside its piece of a box (the non-local assembly's translation
+/// cache).
+Mesh box_cell_mesh(const StructuredLayout& layout, int dim, Index b);
+
 }  // namespace perimorph::mesh

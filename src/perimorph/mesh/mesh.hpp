@@ -24,15 +24,26 @@ struct CellFace {
   auto operator<=>(const CellFace&) const = default;
 };
 
-/// The layout of a structured box mesh: cell c = i + n0 (j + n1 k) is the box
-/// [origin + (i, j, k) ∘ spacing, origin + (i+1, j+1, k+1) ∘ spacing]. All
-/// cells are translates of each other, which the non-local assembly exploits.
+/// The layout of a structured box mesh: box cell b = i + n0 (j + n1 k) is the
+/// box [origin + (i, j, k) ∘ spacing, origin + (i+1, j+1, k+1) ∘ spacing]
+/// (its corners exactly: box_node). All cells are translates of each other,
+/// which the non-local assembly exploits. A piece of the box (part_mesh)
+/// keeps the layout with the box number of each of its cells.
 struct StructuredLayout {
   std::array<Index, 3> cells{1, 1, 1};
   Vec3 origin = Vec3::Zero();
   Vec3 spacing = Vec3::Ones();
-  std::array<Index, 3> cell_ijk(Index c) const {
-    return {c % cells[0], (c / cells[0]) % cells[1], c / (cells[0] * cells[1])};
+  /// The box's upper corner: its last nodes lie exactly on it.
+  Vec3 upper = Vec3::Ones();
+  /// The box cell of each cell of a piece, ascending; empty: cell c is box cell c.
+  std::vector<Index> box_cells;
+
+  Index num_box_cells() const { return cells[0] * cells[1] * cells[2]; }
+  Index box_cell(Index c) const { return box_cells.empty() ? c : box_cells[static_cast<std::size_t>(c)]; }
+  /// (i, j, k) of cell c (of the mesh: through box_cell on a piece).
+  std::array<Index, 3> cell_ijk(Index c) const { return box_cell_ijk(box_cell(c)); }
+  std::array<Index, 3> box_cell_ijk(Index b) const {
+    return {b % cells[0], (b / cells[0]) % cells[1], b / (cells[0] * cells[1])};
   }
 };
 

@@ -62,6 +62,12 @@ PartMesh part_mesh(const Mesh& whole, std::span<const Index> cells) {
   for (std::size_t c = 0; c < out.global_cell.size(); ++c)
     mesh.cell_region[c] = whole.cell_region[static_cast<std::size_t>(out.global_cell[c])];
   mesh.cuts = whole.cuts;
+  if (whole.structure) {
+    mesh.structure = whole.structure;
+    auto& box = mesh.structure->box_cells;
+    box.clear();
+    for (Index g : out.global_cell) box.push_back(whole.structure->box_cell(g));
+  }
 
   for (const auto& [name, set] : whole.node_sets) {
     auto& mine = mesh.node_sets[name];

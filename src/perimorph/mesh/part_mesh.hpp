@@ -31,9 +31,10 @@ struct PartMesh {
 /// order) and the nodes they use. Node sets keep their nodes in the piece,
 /// face and cell sets their faces and cells in it; every set keeps its name,
 /// empty where the piece has none of it, so that a boundary condition on a set
-/// names a set on every process. Region ids and cuts are kept. A structured
-/// layout is not (it numbers the whole box's cells). Throws Error for a cell
-/// out of range or listed twice.
+/// names a set on every process. Region ids and cuts are kept, and a
+/// structured layout, with the box cell of each local cell
+/// (StructuredLayout::box_cells). Throws Error for a cell out of range or
+/// listed twice.
 PartMesh part_mesh(const Mesh& whole, std::span<const Index> cells);
 
 }  // namespace perimorph::mesh

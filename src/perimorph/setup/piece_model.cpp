@@ -1,0 +1,78 @@
+#include "perimorph/setup/piece_model.hpp"
+
+#include "perimorph/core/error.hpp"
+#include "perimorph/mesh/part_mesh.hpp"
+
+namespace perimorph::setup {
+
+namespace {
+
+/// v at the listed cells, in their order.
+template <class T>
+std::vector<T> at_cells(const std::vector<T>& v, std::span<const Index> cells) {
+  std::vector<T> out;
+  out.reserve(cells.size());
+  for (Index c : cells) out.push_back(v[static_cast<std::size_t>(c)]);
+  return out;
+}
+
+/// The cells the process of `part` reads: those whose C it computes and
+/// those whose non-local points it stores, ascending (every cell for the
+/// whole model).
+std::vector<Index> cells_read(const Discretization& part) {
+  std::vector<Index> cells;
+  for (Index c = 0; c < part.mesh.num_cells(); ++c) {
+    const bool computed = part.computed_cells.empty() || part.computed_cells[static_cast<std::size_t>(c)];
+    if (computed || (part.nonlocal && part.nonlocal->points.holds(c))) cells.push_back(c);
+  }
+  return cells;
+}
+
+}  // namespace
+
+PieceModel cut_to_piece(const Discretization& part, std::span<const int> owner, int part_number) {
+  PERIMORPH_ASSERT(static_cast<Index>(owner.size()) == part.mesh.num_cells(), "a part for every cell");
+  const std::vector<Index> cells = cells_read(part);
+  mesh::PartMesh pm = mesh::part_mesh(part.mesh, cells);
+
+  std::vector<dofs::Continuity> continuity;
+  for (Index c : cells) continuity.push_back(part.dofmap.continuity(c));
+  dofs::DofMap dofmap(pm.mesh, part.dofmap.block_size(), continuity);
+  std::vector<int> piece_owner;
+  for (Index c : cells) piece_owner.push_back(owner[static_cast<std::size_t>(c)]);
+  partition::PieceDofs piece_dofs = partition::piece_dofs(dofmap, pm, piece_owner, part_number,
+                                                          part.mesh.num_nodes(), part.mesh.num_cells());
+
+  std::optional<NonlocalModel> nl;
+  if (part.nonlocal) {
+    const NonlocalModel& whole = *part.nonlocal;
+    nl = NonlocalModel{whole.material,
+                       whole.kernel,
+                       whole.calibration,
+                       whole.discrete_factor,
+                       whole.alpha,
+                       bonds::points_of_cells(whole.points, cells),
+                       whole.graph.renumbered(cells),
+                       {},
+                       {at_cells(whole.morph.purely_nonlocal, cells), whole.morph.morphing_cells}};
+    nl->cuts = bonds::CutNeighborhood(pm.mesh, nl->points.bond_reach(nl->kernel.horizon));
+  }
+  std::optional<DamageModel> damage = part.damage;
+  if (damage) damage->cell_law = at_cells(damage->cell_law, cells);
+
+  Discretization disc{
+      part.config,
+      std::move(pm.mesh),
+      std::move(dofmap),
+      part.rule,
+      part.stiffness.cells_of(cells),
+      part.scale,
+      std::move(nl),
+      std::move(damage),
+      part.computed_cells.empty() ? std::vector<char>(cells.size(), 1) : at_cells(part.computed_cells, cells),
+      {}};
+  return {std::move(disc), std::move(pm.global_cell), std::move(pm.global_node), std::move(piece_owner),
+          std::move(piece_dofs)};
+}
+
+}  // namespace perimorph::setup

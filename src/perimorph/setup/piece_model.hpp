@@ -1,0 +1,40 @@
+#pragma once
+// A process's piece of a model (issue 17, item 1): the discretization of a
+// part (build_discretization with a ModelPart) cut to the cells the process
+// reads — those whose morphed C it computes (its part and their node
+// neighbours) and those whose non-local points it stores (every cell its
+// bonds reach) — as a model of its own, numbered locally in the global
+// order, with the global number of each cell and node, the part of each
+// cell and the keys and owners of its dof nodes (partition::piece_dofs), from
+// which system::piece_distribution numbers them. Assembled on its
+// distribution, the piece gives the whole model's matrix rows, bit for bit.
+
+#include "perimorph/partition/piece_dofs.hpp"
+#include "perimorph/setup/discretization.hpp"
+
+#include <span>
+#include <vector>
+
+namespace perimorph::setup {
+
+struct PieceModel {
+  /// The piece's discretization, in local numbers: its mesh (a mesh::PartMesh's,
+  /// with the box layout kept), dof map, morphed C, non-local points and cell
+  /// graph (the rows of the computed cells), flags, damage laws, computed
+  /// cells. No share_flags: a rebuild for a grown α is not made on a piece.
+  Discretization disc;
+  /// The global number of each local cell and mesh node, ascending.
+  std::vector<Index> global_cell, global_node;
+  /// The part of each local cell.
+  std::vector<int> owner;
+  /// What the piece decides about its dof nodes (owners and keys).
+  partition::PieceDofs dofs;
+};
+
+/// The piece of `part` (built for part `part_number`, or the whole model)
+/// that its process reads, with `owner` the part of every cell of the whole
+/// mesh. Requires the part's computed cells to be its part's node neighbours
+/// (build_discretization's, cells_near_part).
+PieceModel cut_to_piece(const Discretization& part, std::span<const int> owner, int part_number);
+
+}  // namespace perimorph::setup
