@@ -12,6 +12,8 @@
 //   Assemble/0 K on the part, numbered by the whole model's dof numbering
 //              (system::distribution_over_processes: what a run does today)
 //   Assemble/1 K on the piece, numbered from the piece
+//   Assemble/2 K on the part by the serial path (no distribution: what a run
+//              on one process does; compare on one process only)
 //
 // Counters (the largest over the processes): cells (the part's: every cell;
 // the piece's), model_MB (diagnostics::model_memory, plus on the piece its
@@ -91,7 +93,8 @@ void cut(benchmark::State& state) {
   const Model& m = model();
   double cells = 0, mb = 0;
   time_collectively(state, [&] {
-    const auto piece = setup::cut_to_piece(m.part, m.partition.owner, la::world_rank());
+    const auto piece =
+        setup::cut_to_piece(m.part, m.partition.owner, la::world_rank(), la::any_over_processes);
     const auto d = system::piece_distribution(piece.dofs);
     benchmark::DoNotOptimize(d->to_distributed.data());
     cells = static_cast<double>(piece.global_cell.size());
@@ -106,13 +109,18 @@ void cut(benchmark::State& state) {
 void assemble(benchmark::State& state) {
   const Model& m = model();
   const bool on_piece = state.range(0) == 1;
-  const auto piece = setup::cut_to_piece(m.part, m.partition.owner, la::world_rank());
+  const auto piece = setup::cut_to_piece(m.part, m.partition.owner, la::world_rank(), la::any_over_processes);
   const auto distribution =
       on_piece ? system::piece_distribution(piece.dofs)
       : la::world_size() > 1
           ? system::distribution_over_processes(m.part)
           : system::distribution_of(partition::dof_numbering(m.part.dofmap, m.partition), 0);
   time_collectively(state, [&] {
+    if (state.range(0) == 2) {
+      const auto K = system::assemble_stiffness(m.part);
+      benchmark::DoNotOptimize(&K);
+      return;
+    }
     const auto K = system::assemble_stiffness(on_piece ? piece.disc : m.part, distribution);
     benchmark::DoNotOptimize(&K);
   });
@@ -144,6 +152,7 @@ int main(int argc, char** argv) {
   benchmark::RegisterBenchmark("Assemble", assemble)
       ->Arg(0)
       ->Arg(1)
+      ->Arg(2)
       ->UseManualTime()
       ->Unit(benchmark::kMillisecond)
       ->Iterations(3);

@@ -9,6 +9,7 @@
 // the pieces (supports and loads from the piece's sets, u held at the
 // piece's nodes) gives the whole model's u.
 
+#include "perimorph/core/error.hpp"
 #include "perimorph/la/node_gather.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/partition/dof_layout.hpp"
@@ -53,7 +54,8 @@ TEST(PieceModel, AssemblesTheWholeModelsRowsBitForBit) {
     SCOPED_TRACE(name);
     const setup::Discretization part = part_of(config);
     const auto p = partition::coordinate_bisection(part.mesh, la::world_size());
-    const setup::PieceModel piece = setup::cut_to_piece(part, p.owner, la::world_rank());
+    const setup::PieceModel piece =
+        setup::cut_to_piece(part, p.owner, la::world_rank(), la::any_over_processes);
     EXPECT_EQ(piece.disc.mesh.num_cells(), static_cast<Index>(piece.global_cell.size()));
 
     const auto whole = system::assemble_stiffness(
@@ -101,7 +103,8 @@ TEST(PieceModel, SolvesTheCaseAsTheWholeModelHoldingUAtItsNodesOnly) {
     SCOPED_TRACE(name);
     const setup::Discretization part = part_of(config);
     const auto p = partition::coordinate_bisection(part.mesh, la::world_size());
-    const setup::PieceModel piece = setup::cut_to_piece(part, p.owner, la::world_rank());
+    const setup::PieceModel piece =
+        setup::cut_to_piece(part, p.owner, la::world_rank(), la::any_over_processes);
     const auto expected = solved(
         part, la::world_size() > 1 ? system::distribution_over_processes(part)
                                    : system::distribution_of(partition::dof_numbering(part.dofmap, p), 0));
@@ -130,6 +133,25 @@ TEST(PieceModel, SolvesTheCaseAsTheWholeModelHoldingUAtItsNodesOnly) {
     EXPECT_GT(largest, 0.0);
     EXPECT_LE(diff, 1e-12 * largest) << "process " << la::world_rank() << " of " << la::world_size();
   }
+}
+
+/// A boundary condition's set may miss a piece and reach another's; one that
+/// reaches no dof on any process is the case error of the whole model, on
+/// every process (collective: none waits for another).
+TEST(PieceModel, ASetMayMissAPieceButNotEveryPiece) {
+  const auto config = loaded_cases().back().config;  // the mixed plate pulled along x
+  const setup::Discretization part = part_of(config);
+  const auto p = partition::coordinate_bisection(part.mesh, la::world_size());
+  setup::PieceModel piece = setup::cut_to_piece(part, p.owner, la::world_rank(), la::any_over_processes);
+  const bool mine = !piece.disc.mesh.node_sets.at("xmax").empty();
+  EXPECT_TRUE(la::any_over_processes(mine));
+  const bool everywhere = la::min_over_processes({mine ? 1LL : 0LL}).front() == 1;  // (collective)
+  if (la::world_size() > 1) {
+    EXPECT_FALSE(everywhere) << "every piece reaches xmax";
+  }
+  EXPECT_EQ(setup::set_dof_nodes(piece.disc, "xmax", {}).empty(), !mine);
+  piece.disc.mesh.node_sets["nowhere"] = {};
+  EXPECT_THROW((void)setup::set_dof_nodes(piece.disc, "nowhere", {}), InputError);
 }
 
 }  // namespace

@@ -76,7 +76,7 @@ TEST(PieceModel, HoldsTheCellsItsPartReadsWithTheirDataBitForBit) {
       Index owned = 0, held = 0;
       for (int q = 0; q < parts; ++q) {
         const auto part = setup::build_discretization(config, {}, {parts, q, flags.share()});
-        const auto piece = setup::cut_to_piece(part, p.owner, q);
+        const auto piece = setup::cut_to_piece(part, p.owner, q, {});
         std::vector<Index> read;
         for (Index c = 0; c < ncells; ++c)
           if (part.computed_cells[static_cast<std::size_t>(c)] || part.nonlocal->points.holds(c))
@@ -102,7 +102,7 @@ TEST(PieceModel, OfTheWholeModelIsTheWholeModel) {
   const auto config = testing::mixed_cg_dg_plate();
   const auto whole = setup::build_discretization(config);
   const std::vector<int> owner(static_cast<std::size_t>(whole.mesh.num_cells()), 0);
-  const auto piece = setup::cut_to_piece(whole, owner, 0);
+  const auto piece = setup::cut_to_piece(whole, owner, 0, {});
   EXPECT_EQ(piece.disc.mesh.num_cells(), whole.mesh.num_cells());
   EXPECT_EQ(piece.disc.dofmap.num_nodes(), whole.dofmap.num_nodes());
   EXPECT_EQ(piece.dofs.num_owned(), whole.dofmap.num_nodes());

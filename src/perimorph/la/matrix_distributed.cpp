@@ -61,8 +61,21 @@ bool Matrix::acquire_distributed_view() {
   if (dview_) return true;
   PetscBool mpiaij = PETSC_FALSE;
   PM_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(m_), MATMPIAIJ, &mpiaij));
-  if (!mpiaij) return false;  // one process (SeqAIJ): MatSetValues in add()
   auto v = std::make_unique<DistributedView>();
+  if (!mpiaij) {
+    // One process (SeqAIJ): the matrix is its own diagonal block, with no off block.
+    PetscBool seqaij = PETSC_FALSE;
+    PM_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(m_), MATSEQAIJ, &seqaij));
+    if (!seqaij) return false;
+    v->diag = m_;
+    PM_PETSC(MatGetSize(m_, &v->rend, nullptr));
+    PetscInt bs = 1;
+    PM_PETSC(MatGetBlockSize(m_, &bs));
+    v->bs = bs;
+    if (!borrow_csr(m_, v->d)) return false;
+    dview_ = std::move(v);
+    return true;
+  }
   PM_PETSC(MatMPIAIJGetSeqAIJ(m_, &v->diag, &v->off, &v->garray));
   PetscInt noff = 0;
   PM_PETSC(MatGetSize(v->off, nullptr, &noff));
@@ -107,7 +120,8 @@ void Matrix::add_distributed(std::span<const Index> rows, std::span<const Index>
     if (gr < v.rstart || gr >= v.rend) continue;
     const PetscInt lr = gr - v.rstart;
     const PetscInt *dfirst = v.d.ja + v.d.ia[lr], *dlast = v.d.ja + v.d.ia[lr + 1];
-    const PetscInt *ofirst = v.o.ja + v.o.ia[lr], *olast = v.o.ja + v.o.ia[lr + 1];
+    const PetscInt* ofirst = v.off != nullptr ? v.o.ja + v.o.ia[lr] : nullptr;
+    const PetscInt* olast = v.off != nullptr ? v.o.ja + v.o.ia[lr + 1] : nullptr;
     const PetscInt* at = nullptr;  // the last diagonal-block entry written (runs of columns)
     for (std::size_t j = 0; j < nc; ++j) {
       if (cols[j] < 0) continue;
@@ -139,7 +153,7 @@ void Matrix::release_distributed_view() const {
   if (!dview_) return;
   const std::unique_ptr<DistributedView> v = std::move(dview_);
   return_csr(v->diag, v->d);
-  return_csr(v->off, v->o);
+  if (v->off != nullptr) return_csr(v->off, v->o);
 }
 
 std::vector<Index> Matrix::assembly_rows() const {

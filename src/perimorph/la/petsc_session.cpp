@@ -187,6 +187,10 @@ std::vector<char> union_over_processes(std::vector<char> flags) {
   return flags;
 }
 
+bool any_over_processes(bool holds) {
+  return min_over_processes({holds ? -1LL : 0LL}).front() < 0;
+}
+
 std::vector<long long> min_over_processes(std::vector<long long> values) {
   if (world_size() == 1 || values.empty()) return values;
   MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_LONG_LONG, MPI_MIN,

@@ -58,6 +58,8 @@ std::vector<double> from_owners(std::vector<double> values);
 /// The elementwise smallest of `values` over the ranks (collective; every
 /// rank passes the same length; `values` itself on one rank).
 std::vector<long long> min_over_processes(std::vector<long long> values);
+/// Whether `holds` is true on any rank (collective; `holds` itself on one rank).
+bool any_over_processes(bool holds);
 /// The elementwise largest of `flags` (0 or 1: their union) over the ranks,
 /// sending only where they are set: each rank's set entries are gathered by
 /// every rank (8 bytes a set entry), not the whole array (collective; the

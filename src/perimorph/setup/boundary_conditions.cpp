@@ -58,7 +58,9 @@ std::vector<Index> set_dof_nodes(const Discretization& model, const std::string&
         "physical groups, cell set \"all\", one cell set per [[region]], one node set per [[node_set]])",
         where.describe(), set, did_you_mean(set, names), fmt::join(names, ", ")));
   }
-  if (out.empty())
+  // On a piece (collective): a set may miss it and reach another process's.
+  const bool reached = model.any_over_processes ? model.any_over_processes(!out.empty()) : !out.empty();
+  if (!reached)
     throw InputError(fmt::format(
         "{}: set '{}' reaches no degree of freedom of the discretization, so a boundary condition on it "
         "would act on nothing; choose a set whose cells or nodes carry degrees of freedom",

@@ -21,7 +21,9 @@ namespace perimorph::setup {
 ///   a face set of the box, the cells with a face on it), which has no vertex
 ///   node of its own.
 /// Throws InputError prefixed with `where` for a name the mesh does not have
-/// (with the closest set name) or a set that reaches no dof node.
+/// (with the closest set name) or a set that reaches no dof node (on a piece
+/// of the model, on no process: Discretization::any_over_processes; then
+/// collective).
 std::vector<Index> set_dof_nodes(const Discretization& model, const std::string& set,
                                  const casefile::SourceLocation& where);
 

@@ -47,6 +47,11 @@ struct Discretization {
   std::vector<char> computed_cells;
   /// ModelPart::share_flags, kept for a rebuild (empty for the whole model).
   std::function<std::vector<char>(std::vector<char>)> share_flags{};
+  /// On a process's piece of the model (cut_to_piece): whether a condition
+  /// holds on any process (collective; la::). A set may reach none of a
+  /// piece's dofs, and is an error only when it reaches none on every
+  /// process (set_dof_nodes). Empty for a mesh that is the whole model's.
+  std::function<bool(bool)> any_over_processes{};
 
   int dim() const { return mesh.dim(); }
   assembly::LocalSpace local_space() const { return {mesh, dofmap, rule, scale}; }

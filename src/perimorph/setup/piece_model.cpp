@@ -30,7 +30,8 @@ std::vector<Index> cells_read(const Discretization& part) {
 
 }  // namespace
 
-PieceModel cut_to_piece(const Discretization& part, std::span<const int> owner, int part_number) {
+PieceModel cut_to_piece(const Discretization& part, std::span<const int> owner, int part_number,
+                        std::function<bool(bool)> any_over_processes) {
   PERIMORPH_ASSERT(static_cast<Index>(owner.size()) == part.mesh.num_cells(), "a part for every cell");
   const std::vector<Index> cells = cells_read(part);
   mesh::PartMesh pm = mesh::part_mesh(part.mesh, cells);
@@ -70,7 +71,8 @@ PieceModel cut_to_piece(const Discretization& part, std::span<const int> owner, 
       std::move(nl),
       std::move(damage),
       part.computed_cells.empty() ? std::vector<char>(cells.size(), 1) : at_cells(part.computed_cells, cells),
-      {}};
+      {},
+      std::move(any_over_processes)};
   return {std::move(disc), std::move(pm.global_cell), std::move(pm.global_node), std::move(piece_owner),
           std::move(piece_dofs)};
 }

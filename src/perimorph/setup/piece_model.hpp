@@ -12,6 +12,7 @@
 #include "perimorph/partition/piece_dofs.hpp"
 #include "perimorph/setup/discretization.hpp"
 
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -33,8 +34,11 @@ struct PieceModel {
 
 /// The piece of `part` (built for part `part_number`, or the whole model)
 /// that its process reads, with `owner` the part of every cell of the whole
-/// mesh. Requires the part's computed cells to be its part's node neighbours
-/// (build_discretization's, cells_near_part).
-PieceModel cut_to_piece(const Discretization& part, std::span<const int> owner, int part_number);
+/// mesh and `any_over_processes` whether a condition holds on any process
+/// (collective; la::), kept in the piece's discretization
+/// (Discretization::any_over_processes). Requires the part's computed cells
+/// to be its part's node neighbours (build_discretization's, cells_near_part).
+PieceModel cut_to_piece(const Discretization& part, std::span<const int> owner, int part_number,
+                        std::function<bool(bool)> any_over_processes);
 
 }  // namespace perimorph::setup
