@@ -31,9 +31,10 @@
 #include "perimorph/system/piece_distribution.hpp"
 #include "perimorph/system/stiffness.hpp"
 
+#include "support/collective.hpp"
+
 #include <benchmark/benchmark.h>
 
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -42,7 +43,6 @@
 namespace {
 
 using namespace perimorph;
-using Clock = std::chrono::steady_clock;
 
 std::string case_path;
 
@@ -72,16 +72,6 @@ double megabytes(const diagnostics::ModelMemory& m) {
   return static_cast<double>(m.whole() + m.points + m.graph + m.stiffness) / 1e6;
 }
 
-template <class Work>
-void time_collectively(benchmark::State& state, Work&& work) {
-  for (auto _ : state) {
-    la::barrier();
-    const auto t0 = Clock::now();
-    work();
-    state.SetIterationTime(std::chrono::duration<double>(Clock::now() - t0).count());
-  }
-}
-
 double piece_megabytes(const setup::PieceModel& piece) {
   const std::size_t maps =
       (piece.global_cell.size() + piece.global_node.size() + piece.dofs.key.size()) * sizeof(Index) +
@@ -92,7 +82,7 @@ double piece_megabytes(const setup::PieceModel& piece) {
 void cut(benchmark::State& state) {
   const Model& m = model();
   double cells = 0, mb = 0;
-  time_collectively(state, [&] {
+  bench::time_collectively(state, [&] {
     const auto piece =
         setup::cut_to_piece(m.part, m.partition.owner, la::world_rank(), la::any_over_processes);
     const auto d = system::piece_distribution(piece.dofs);
@@ -115,7 +105,7 @@ void assemble(benchmark::State& state) {
       : la::world_size() > 1
           ? system::distribution_over_processes(m.part)
           : system::distribution_of(partition::dof_numbering(m.part.dofmap, m.partition), 0);
-  time_collectively(state, [&] {
+  bench::time_collectively(state, [&] {
     if (state.range(0) == 2) {
       const auto K = system::assemble_stiffness(m.part);
       benchmark::DoNotOptimize(&K);
@@ -156,9 +146,5 @@ int main(int argc, char** argv) {
       ->UseManualTime()
       ->Unit(benchmark::kMillisecond)
       ->Iterations(3);
-  // Process 0 reports; the others run the same benchmarks in step.
-  if (la::world_rank() != 0) std::freopen("/dev/null", "w", stdout);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return bench::run_reported_by_process_zero();
 }

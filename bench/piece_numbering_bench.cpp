@@ -28,17 +28,16 @@
 #include "perimorph/partition/piece_dofs.hpp"
 #include "perimorph/system/piece_distribution.hpp"
 
+#include "support/collective.hpp"
+
 #include <benchmark/benchmark.h>
 
-#include <chrono>
-#include <cstdio>
 #include <map>
 #include <memory>
 
 namespace {
 
 using namespace perimorph;
-using Clock = std::chrono::steady_clock;
 
 struct Model {
   mesh::Mesh mesh;
@@ -67,20 +66,10 @@ Model& model(int n) {
   return *m;
 }
 
-template <class Work>
-void time_collectively(benchmark::State& state, Work&& work) {
-  for (auto _ : state) {
-    la::barrier();
-    const auto t0 = Clock::now();
-    work();
-    state.SetIterationTime(std::chrono::duration<double>(Clock::now() - t0).count());
-  }
-}
-
 void whole(benchmark::State& state) {
   const Model& m = model(static_cast<int>(state.range(0)));
   std::size_t nodes = 0;
-  time_collectively(state, [&] {
+  bench::time_collectively(state, [&] {
     const dofs::DofMap dm(m.mesh, 3, m.flags);
     const auto layout = partition::dof_numbering(dm, m.partition);
     nodes = layout.to_distributed.size();
@@ -94,7 +83,7 @@ void whole(benchmark::State& state) {
 void piece(benchmark::State& state) {
   const Model& m = model(static_cast<int>(state.range(0)));
   std::size_t nodes = 0;
-  time_collectively(state, [&] {
+  bench::time_collectively(state, [&] {
     const auto pm = mesh::part_mesh(m.mesh, m.piece_cells);
     std::vector<dofs::Continuity> flags;
     std::vector<int> owner;
@@ -133,9 +122,5 @@ int main(int argc, char** argv) {
         ->Unit(benchmark::kMillisecond)
         ->Iterations(3);
   }
-  // Process 0 reports; the others run the same benchmarks in step.
-  if (la::world_rank() != 0) std::freopen("/dev/null", "w", stdout);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return bench::run_reported_by_process_zero();
 }

@@ -21,6 +21,7 @@
 #include "perimorph/system/piece_distribution.hpp"
 #include "perimorph/system/stiffness.hpp"
 #include "support/model_cases.hpp"
+#include "support/owned_rows.hpp"
 
 #include <gtest/gtest.h>
 
@@ -32,15 +33,8 @@
 namespace perimorph {
 namespace {
 
-using Rows = std::vector<std::tuple<Index, std::vector<Index>, std::vector<double>>>;
-Rows owned_rows(const la::Matrix& K) {
-  Rows out;
-  K.visit_owned_rows([&](Index r, std::span<const Index> cols, std::span<const double> vals) {
-    out.emplace_back(r, std::vector<Index>(cols.begin(), cols.end()),
-                     std::vector<double>(vals.begin(), vals.end()));
-  });
-  return out;
-}
+using testing::owned_rows;
+using testing::Rows;
 
 setup::Discretization part_of(const casefile::CaseConfig& config) {
   return setup::build_discretization(config, {},

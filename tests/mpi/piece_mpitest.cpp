@@ -23,6 +23,7 @@
 #include "perimorph/partition/dof_layout.hpp"
 #include "perimorph/system/piece_distribution.hpp"
 #include "perimorph/system/stiffness.hpp"
+#include "support/owned_rows.hpp"
 #include "support/pieces.hpp"
 
 #include <gtest/gtest.h>
@@ -99,15 +100,8 @@ la::Matrix assemble(const mesh::Mesh& mesh, const dofs::DofMap& dm, std::shared_
   return K;
 }
 
-using Rows = std::vector<std::tuple<Index, std::vector<Index>, std::vector<double>>>;
-Rows owned_rows(const la::Matrix& K) {
-  Rows out;
-  K.visit_owned_rows([&](Index r, std::span<const Index> cols, std::span<const double> vals) {
-    out.emplace_back(r, std::vector<Index>(cols.begin(), cols.end()),
-                     std::vector<double>(vals.begin(), vals.end()));
-  });
-  return out;
-}
+using testing::owned_rows;
+using testing::Rows;
 
 TEST_P(Pieces, AssembleTheWholeModelsMatrixBitForBit) {
   const auto whole = box(GetParam());
