@@ -155,19 +155,17 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
   // After PETSc's initialization (which installs its own handlers): SIGINT and
   // SIGTERM stop the run between solves, its files in step.
   perimorph::install_stop_handlers();
-  // Each process computes the morphed C and the CG/DG flags of the cells near its part only.
-  const auto model = perimorph::setup::build_discretization(
-      config, [&](const std::string& phase) { progress.phase(phase); },
-      {perimorph::la::world_size(), perimorph::la::world_rank(),
-       [](std::vector<char> flags) { return perimorph::la::union_over_processes(std::move(flags)); }});
-  const auto summary =
-      perimorph::run::run_static(model, {out_dir, quiet, &progress, restart, checkpoint_every});
+  const perimorph::run::RunOptions options{out_dir, quiet, &progress, restart, checkpoint_every};
+  const auto summary = perimorph::run::run_static(
+      perimorph::run::process_model(config, options,
+                                    [&](const std::string& phase) { progress.phase(phase); }),
+      options);
   progress.finish();
   if (!quiet) {
     if (summary.restarted_after > 0)
       fmt::print("continued after increment {} ({})\n", summary.restarted_after, restart);
     fmt::print("{}: {} increment(s), {} dofs; last solve {} + {}: {} iterations, relative residual {:.2e}\n",
-               path, summary.increments_done, model.dofmap.num_dofs(), summary.last_solve.ksp_type,
+               path, summary.increments_done, summary.dofs, summary.last_solve.ksp_type,
                summary.last_solve.pc_type, summary.last_solve.iterations,
                summary.last_solve.relative_residual);
     if (summary.preconditioner_rebuilds > 0)

@@ -69,14 +69,7 @@ double largest(double v) {
 }
 
 double megabytes(const diagnostics::ModelMemory& m) {
-  return static_cast<double>(m.whole() + m.points + m.graph + m.stiffness) / 1e6;
-}
-
-double piece_megabytes(const setup::PieceModel& piece) {
-  const std::size_t maps =
-      (piece.global_cell.size() + piece.global_node.size() + piece.dofs.key.size()) * sizeof(Index) +
-      piece.owner.size() * sizeof(int) + piece.dofs.owned.size();
-  return megabytes(diagnostics::model_memory(piece.disc)) + static_cast<double>(maps) / 1e6;
+  return static_cast<double>(m.whole() + m.points + m.graph + m.stiffness + m.piece_maps) / 1e6;
 }
 
 void cut(benchmark::State& state) {
@@ -85,10 +78,10 @@ void cut(benchmark::State& state) {
   bench::time_collectively(state, [&] {
     const auto piece =
         setup::cut_to_piece(m.part, m.partition.owner, la::world_rank(), la::any_over_processes);
-    const auto d = system::piece_distribution(piece.dofs);
+    const auto d = system::piece_distribution(piece.piece->dofs);
     benchmark::DoNotOptimize(d->to_distributed.data());
-    cells = static_cast<double>(piece.global_cell.size());
-    mb = piece_megabytes(piece);
+    cells = static_cast<double>(piece.piece->global_cell.size());
+    mb = megabytes(diagnostics::model_memory(piece));
   });
   state.counters["cells"] = largest(cells);
   state.counters["model_MB"] = largest(mb * 1e3) / 1e3;
@@ -101,7 +94,7 @@ void assemble(benchmark::State& state) {
   const bool on_piece = state.range(0) == 1;
   const auto piece = setup::cut_to_piece(m.part, m.partition.owner, la::world_rank(), la::any_over_processes);
   const auto distribution =
-      on_piece ? system::piece_distribution(piece.dofs)
+      on_piece ? system::piece_distribution(piece.piece->dofs)
       : la::world_size() > 1
           ? system::distribution_over_processes(m.part)
           : system::distribution_of(partition::dof_numbering(m.part.dofmap, m.partition), 0);
@@ -111,7 +104,7 @@ void assemble(benchmark::State& state) {
       benchmark::DoNotOptimize(&K);
       return;
     }
-    const auto K = system::assemble_stiffness(on_piece ? piece.disc : m.part, distribution);
+    const auto K = system::assemble_stiffness(on_piece ? piece : m.part, distribution);
     benchmark::DoNotOptimize(&K);
   });
   state.counters["dof_nodes"] = largest(static_cast<double>(distribution->to_distributed.size()));

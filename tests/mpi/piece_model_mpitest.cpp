@@ -48,14 +48,14 @@ TEST(PieceModel, AssemblesTheWholeModelsRowsBitForBit) {
     SCOPED_TRACE(name);
     const setup::Discretization part = part_of(config);
     const auto p = partition::coordinate_bisection(part.mesh, la::world_size());
-    const setup::PieceModel piece =
+    const setup::Discretization piece =
         setup::cut_to_piece(part, p.owner, la::world_rank(), la::any_over_processes);
-    EXPECT_EQ(piece.disc.mesh.num_cells(), static_cast<Index>(piece.global_cell.size()));
+    EXPECT_EQ(piece.mesh.num_cells(), static_cast<Index>(piece.piece->global_cell.size()));
 
     const auto whole = system::assemble_stiffness(
         part, la::world_size() > 1 ? system::distribution_over_processes(part)
                                    : system::distribution_of(partition::dof_numbering(part.dofmap, p), 0));
-    const auto mine = system::assemble_stiffness(piece.disc, system::piece_distribution(piece.dofs));
+    const auto mine = system::assemble_stiffness(piece, system::piece_distribution(piece.piece->dofs));
     const Rows expected = owned_rows(whole.K), got = owned_rows(mine.K);
     ASSERT_FALSE(expected.empty());
     EXPECT_TRUE(got == expected) << "process " << la::world_rank() << " of " << la::world_size();
@@ -79,40 +79,27 @@ std::vector<double> solved(const setup::Discretization& model,
   return la::NodeGather(distribution, model.dim(), {}).gathered(u, std::nan(""));
 }
 
-/// The cases with loads and supports: a plate with a cut (CG), the flagship
-/// (holes; α = 0 at the start) and the mixed CG/DG plate pulled along x.
-std::vector<testing::NamedCase> loaded_cases() {
-  auto cases = testing::model_part_cases();
-  std::vector<testing::NamedCase> out;
-  for (auto& c : cases)
-    if (c.name.rfind("b3", 0) == 0 || c.name.rfind("flagship", 0) == 0) out.push_back(std::move(c));
-  auto plate = testing::mixed_cg_dg_plate();
-  plate.dirichlet = {testing::fixed("xmin", 0), testing::fixed("xmin", 1), testing::fixed("xmax", 0, 0.01)};
-  out.push_back({"mixed CG/DG plate pulled", plate});
-  return out;
-}
-
 TEST(PieceModel, SolvesTheCaseAsTheWholeModelHoldingUAtItsNodesOnly) {
-  for (const auto& [name, config] : loaded_cases()) {
+  for (const auto& [name, config] : testing::loaded_model_cases()) {
     SCOPED_TRACE(name);
     const setup::Discretization part = part_of(config);
     const auto p = partition::coordinate_bisection(part.mesh, la::world_size());
-    const setup::PieceModel piece =
+    const setup::Discretization piece =
         setup::cut_to_piece(part, p.owner, la::world_rank(), la::any_over_processes);
     const auto expected = solved(
         part, la::world_size() > 1 ? system::distribution_over_processes(part)
                                    : system::distribution_of(partition::dof_numbering(part.dofmap, p), 0));
-    const auto got = solved(piece.disc, system::piece_distribution(piece.dofs));
+    const auto got = solved(piece, system::piece_distribution(piece.piece->dofs));
     const int bs = part.dim();
-    ASSERT_EQ(got.size(), static_cast<std::size_t>(piece.disc.dofmap.num_dofs())) << "u as long as the piece";
+    ASSERT_EQ(got.size(), static_cast<std::size_t>(piece.dofmap.num_dofs())) << "u as long as the piece";
     // The same matrix, right-hand side and numbering: the same bits on 1 and
     // 2 processes; from 3, an iterative solver's preconditioner may sum other
     // processes' messages in arrival order (distributed-runs.md), so within
     // round-off.
     double largest = 0.0, diff = 0.0;
-    for (Index c = 0; c < piece.disc.mesh.num_cells(); ++c) {
-      const auto nodes = piece.disc.dofmap.cell_nodes(c);
-      const auto whole_nodes = part.dofmap.cell_nodes(piece.global_cell[static_cast<std::size_t>(c)]);
+    for (Index c = 0; c < piece.mesh.num_cells(); ++c) {
+      const auto nodes = piece.dofmap.cell_nodes(c);
+      const auto whole_nodes = part.dofmap.cell_nodes(piece.piece->global_cell[static_cast<std::size_t>(c)]);
       for (std::size_t a = 0; a < nodes.size(); ++a)
         for (int k = 0; k < bs; ++k) {
           const double mine = got[static_cast<std::size_t>(nodes[a] * bs + k)];
@@ -133,19 +120,19 @@ TEST(PieceModel, SolvesTheCaseAsTheWholeModelHoldingUAtItsNodesOnly) {
 /// reaches no dof on any process is the case error of the whole model, on
 /// every process (collective: none waits for another).
 TEST(PieceModel, ASetMayMissAPieceButNotEveryPiece) {
-  const auto config = loaded_cases().back().config;  // the mixed plate pulled along x
+  const auto config = testing::loaded_model_cases().back().config;  // the mixed plate pulled along x
   const setup::Discretization part = part_of(config);
   const auto p = partition::coordinate_bisection(part.mesh, la::world_size());
-  setup::PieceModel piece = setup::cut_to_piece(part, p.owner, la::world_rank(), la::any_over_processes);
-  const bool mine = !piece.disc.mesh.node_sets.at("xmax").empty();
+  setup::Discretization piece = setup::cut_to_piece(part, p.owner, la::world_rank(), la::any_over_processes);
+  const bool mine = !piece.mesh.node_sets.at("xmax").empty();
   EXPECT_TRUE(la::any_over_processes(mine));
   const bool everywhere = la::min_over_processes({mine ? 1LL : 0LL}).front() == 1;  // (collective)
   if (la::world_size() > 1) {
     EXPECT_FALSE(everywhere) << "every piece reaches xmax";
   }
-  EXPECT_EQ(setup::set_dof_nodes(piece.disc, "xmax", {}).empty(), !mine);
-  piece.disc.mesh.node_sets["nowhere"] = {};
-  EXPECT_THROW((void)setup::set_dof_nodes(piece.disc, "nowhere", {}), InputError);
+  EXPECT_EQ(setup::set_dof_nodes(piece, "xmax", {}).empty(), !mine);
+  piece.mesh.node_sets["nowhere"] = {};
+  EXPECT_THROW((void)setup::set_dof_nodes(piece, "nowhere", {}), InputError);
 }
 
 }  // namespace

@@ -25,14 +25,14 @@ bool same_bits(const T* a, const T* b, std::size_t n) {
   return std::memcmp(a, b, n * sizeof(T)) == 0;
 }
 
-/// Cell k of `piece` against global cell piece.global_cell[k] of `part`.
-void expect_cells_of(const setup::PieceModel& piece, const setup::Discretization& part) {
-  const auto& d = piece.disc;
+/// Cell k of `piece` against global cell piece.piece->global_cell[k] of `part`.
+void expect_cells_of(const setup::Discretization& piece, const setup::Discretization& part) {
+  const auto& d = piece;
   const auto& pp = d.nonlocal->points;
   const auto& wp = part.nonlocal->points;
   const int nv2 = d.stiffness.voigt() * d.stiffness.voigt();
   for (Index k = 0; k < d.mesh.num_cells(); ++k) {
-    const Index g = piece.global_cell[static_cast<std::size_t>(k)];
+    const Index g = piece.piece->global_cell[static_cast<std::size_t>(k)];
     const auto gk = static_cast<std::size_t>(g), kk = static_cast<std::size_t>(k);
     for (int q = 0; q < d.stiffness.points_per_cell(); ++q)
       EXPECT_TRUE(same_bits(d.stiffness.at(k, q), part.stiffness.at(g, q), static_cast<std::size_t>(nv2)))
@@ -55,7 +55,7 @@ void expect_cells_of(const setup::PieceModel& piece, const setup::Discretization
       }
     }
     std::vector<Index> row;
-    for (Index f : d.nonlocal->graph.row(k)) row.push_back(piece.global_cell[static_cast<std::size_t>(f)]);
+    for (Index f : d.nonlocal->graph.row(k)) row.push_back(piece.piece->global_cell[static_cast<std::size_t>(f)]);
     const auto whole_row = part.nonlocal->graph.row(g);
     EXPECT_EQ(row, std::vector<Index>(whole_row.begin(), whole_row.end())) << "cell " << g;
     if (part.damage) {
@@ -81,13 +81,13 @@ TEST(PieceModel, HoldsTheCellsItsPartReadsWithTheirDataBitForBit) {
         for (Index c = 0; c < ncells; ++c)
           if (part.computed_cells[static_cast<std::size_t>(c)] || part.nonlocal->points.holds(c))
             read.push_back(c);
-        EXPECT_EQ(piece.global_cell, read) << "part " << q;
-        held += piece.disc.mesh.num_cells();
-        ASSERT_EQ(piece.disc.mesh.num_cells(), static_cast<Index>(read.size()));
+        EXPECT_EQ(piece.piece->global_cell, read) << "part " << q;
+        held += piece.mesh.num_cells();
+        ASSERT_EQ(piece.mesh.num_cells(), static_cast<Index>(read.size()));
         for (std::size_t k = 0; k < read.size(); ++k)
-          EXPECT_EQ(piece.owner[k], p.owner[static_cast<std::size_t>(read[k])]);
+          EXPECT_EQ(piece.piece->owner[k], p.owner[static_cast<std::size_t>(read[k])]);
         expect_cells_of(piece, part);
-        owned += piece.dofs.num_owned();
+        owned += piece.piece->dofs.num_owned();
       }
       EXPECT_EQ(owned, whole.dofmap.num_nodes()) << "every dof node owned by one part";
       // (The 3D ball's bonds reach across it: each piece is the whole ball.)
@@ -103,11 +103,11 @@ TEST(PieceModel, OfTheWholeModelIsTheWholeModel) {
   const auto whole = setup::build_discretization(config);
   const std::vector<int> owner(static_cast<std::size_t>(whole.mesh.num_cells()), 0);
   const auto piece = setup::cut_to_piece(whole, owner, 0, {});
-  EXPECT_EQ(piece.disc.mesh.num_cells(), whole.mesh.num_cells());
-  EXPECT_EQ(piece.disc.dofmap.num_nodes(), whole.dofmap.num_nodes());
-  EXPECT_EQ(piece.dofs.num_owned(), whole.dofmap.num_nodes());
-  EXPECT_TRUE(piece.disc.nonlocal->points.holds_every_cell());
-  EXPECT_EQ(piece.disc.nonlocal->graph.neighbors, whole.nonlocal->graph.neighbors);
+  EXPECT_EQ(piece.mesh.num_cells(), whole.mesh.num_cells());
+  EXPECT_EQ(piece.dofmap.num_nodes(), whole.dofmap.num_nodes());
+  EXPECT_EQ(piece.piece->dofs.num_owned(), whole.dofmap.num_nodes());
+  EXPECT_TRUE(piece.nonlocal->points.holds_every_cell());
+  EXPECT_EQ(piece.nonlocal->graph.neighbors, whole.nonlocal->graph.neighbors);
 }
 
 }  // namespace

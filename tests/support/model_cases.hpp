@@ -34,6 +34,19 @@ inline std::vector<NamedCase> model_part_cases() {
           {"flagship (holes, DG)", casefile::parse_case_file(examples + "hole_plate_2d/case.toml")}};
 }
 
+/// The cases with loads and supports: a plate with a cut (CG), the flagship
+/// (holes; α = 0 at the start) and the mixed CG/DG plate pulled along x.
+inline std::vector<NamedCase> loaded_model_cases() {
+  auto cases = model_part_cases();
+  std::vector<NamedCase> out;
+  for (auto& c : cases)
+    if (c.name.rfind("b3", 0) == 0 || c.name.rfind("flagship", 0) == 0) out.push_back(std::move(c));
+  auto plate = mixed_cg_dg_plate();
+  plate.dirichlet = {fixed("xmin", 0), fixed("xmin", 1), fixed("xmax", 0, 0.01)};
+  out.push_back({"mixed CG/DG plate pulled", plate});
+  return out;
+}
+
 /// ModelPart::share_flags, simulated on one process: each part's own flags
 /// (the computed cells', 0 elsewhere) are checked against the whole model's
 /// and kept for their maximum over the parts; the whole model's flags are

@@ -2,6 +2,7 @@
 
 #include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/setup/discretization.hpp"
+#include "perimorph/setup/piece_model.hpp"
 
 namespace perimorph::diagnostics {
 
@@ -31,6 +32,9 @@ ModelMemory model_memory(const setup::Discretization& model) {
   m.displacement = static_cast<std::size_t>(dm.num_dofs()) * sizeof(double);
   m.distribution = static_cast<std::size_t>(dm.num_nodes()) * sizeof(Index);
   m.stiffness = model.stiffness.bytes();
+  if (const auto& piece = model.piece)
+    m.piece_maps = bytes_of(piece->global_cell) + bytes_of(piece->global_node) + bytes_of(piece->owner) +
+                   bytes_of(piece->dofs.key) + bytes_of(piece->dofs.owned);
   if (model.nonlocal) {
     const auto& nl = *model.nonlocal;
     const auto& p = nl.points;

@@ -22,6 +22,9 @@ struct ModelMemory {
   std::size_t graph = 0;  ///< the cell graph (one Index per directed cell pair; a part's rows, on a process)
   std::size_t flags = 0;  ///< the purely non-local flags (a byte a cell)
   std::size_t stiffness = 0;  ///< the morphed C (only the cells a part computes, on a process)
+  /// On a process's piece of the model (setup::cut_to_piece): its maps to
+  /// the whole model's numbers (cells, nodes, cell parts, dof keys and owners).
+  std::size_t piece_maps = 0;
   /// What a run adds, whole on every process: the displacement u (a double
   /// a dof, filled at the halo) and the dof nodes' distributed numbers
   /// (la::Distribution, an Index a dof node).

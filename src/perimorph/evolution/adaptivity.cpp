@@ -4,7 +4,7 @@
 #include "perimorph/assembly/morphed_stiffness.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/la/petsc_session.hpp"
-#include "perimorph/partition/partition.hpp"
+#include "perimorph/setup/piece_model.hpp"
 
 #include <fmt/format.h>
 #include <Eigen/Eigenvalues>
@@ -67,7 +67,7 @@ Adaptivity::Adaptivity(const setup::Discretization& disc, double s_crit) : disc_
   core_ = spec.core >= 0.0 ? spec.core : delta;
   transition_ = spec.transition >= 0.0 ? spec.transition : delta;
   seeded_.assign(static_cast<std::size_t>(disc.mesh.num_cells()), 0);
-  decides_ = partition::cells_of_part(disc.mesh, la::world_size(), la::world_rank());
+  decides_ = setup::cells_of_process(disc, la::world_size(), la::world_rank());
 }
 
 void Adaptivity::propose(Index cell, int increment, bool predicted, bool critical_damage) {

@@ -5,7 +5,7 @@
 #include "perimorph/core/error.hpp"
 #include "perimorph/dofs/dof_map.hpp"
 #include "perimorph/la/petsc_session.hpp"
-#include "perimorph/partition/partition.hpp"
+#include "perimorph/setup/piece_model.hpp"
 #include "perimorph/peridynamics/pair_kernel.hpp"
 #include "perimorph/setup/critical_stretch.hpp"
 
@@ -25,7 +25,7 @@ BondFailure::BondFailure(const setup::Discretization& disc)
   if (!regions.empty()) no_fail_.assign(static_cast<std::size_t>(disc.mesh.num_cells()), 0);
   for (const std::string& region : regions)
     for (Index c : disc.mesh.cell_sets.at(region)) no_fail_[static_cast<std::size_t>(c)] = 1;
-  decides_ = partition::cells_of_part(disc.mesh, la::world_size(), la::world_rank());
+  decides_ = setup::cells_of_process(disc, la::world_size(), la::world_rank());
 }
 
 namespace {

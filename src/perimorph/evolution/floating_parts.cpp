@@ -4,7 +4,7 @@
 #include "perimorph/core/error.hpp"
 #include "perimorph/dofs/dof_map.hpp"
 #include "perimorph/la/petsc_session.hpp"
-#include "perimorph/partition/partition.hpp"
+#include "perimorph/setup/piece_model.hpp"
 
 #include <fmt/format.h>
 #include <Eigen/Dense>
@@ -109,7 +109,7 @@ std::vector<Index> stiffness_links_over_processes(const setup::Discretization& d
                                                   const assembly::NonlocalSpace& space) {
   if (la::world_size() == 1) return stiffness_links(disc, space);
   const std::vector<Index> mine =
-      stiffness_links(disc, space, partition::cells_of_part(disc.mesh, la::world_size(), la::world_rank()));
+      stiffness_links(disc, space, setup::cells_of_process(disc, la::world_size(), la::world_rank()));
   const std::vector<double> all = la::all_gather(std::vector<double>(mine.begin(), mine.end()));
   std::vector<Index> links(all.size());
   std::transform(all.begin(), all.end(), links.begin(), [](double v) { return static_cast<Index>(v); });

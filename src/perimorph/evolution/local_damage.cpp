@@ -7,7 +7,7 @@
 #include "perimorph/fem/material.hpp"
 #include "perimorph/la/owned_dofs.hpp"
 #include "perimorph/la/petsc_session.hpp"
-#include "perimorph/partition/partition.hpp"
+#include "perimorph/setup/piece_model.hpp"
 
 #include <algorithm>
 #include <array>
@@ -81,7 +81,7 @@ LocalDamage::LocalDamage(const setup::Discretization& disc)
     : disc_(&disc),
       tolerance_(disc.config.damage.tolerance),
       newton_(disc.config.damage.solver == casefile::DamageSolver::newton),
-      decides_(partition::cells_of_part(disc.mesh, la::world_size(), la::world_rank())) {
+      decides_(setup::cells_of_process(disc, la::world_size(), la::world_rank())) {
   PERIMORPH_ASSERT(disc.damage.has_value(), "LocalDamage needs a damage model");
 }
 

@@ -9,6 +9,7 @@
 #include "perimorph/io/grid.hpp"
 #include "perimorph/run/run_output.hpp"
 #include "perimorph/setup/damage_model.hpp"
+#include "perimorph/setup/piece_model.hpp"
 
 #include <algorithm>
 #include <array>
@@ -159,7 +160,9 @@ io::UnstructuredGrid RunOutput::increment_grid(const setup::Discretization& mode
   if (selected) {
     // A piece: each cell's number in the whole mesh.
     io::Field number{"cell", 1, {}};
-    for (Index c : cells) number.values.push_back(static_cast<double>(c));
+    for (Index c : cells)
+      number.values.push_back(
+          static_cast<double>(model.piece ? model.piece->global_cell[static_cast<std::size_t>(c)] : c));
     grid.cell_data.push_back(std::move(number));
   }
   return grid;

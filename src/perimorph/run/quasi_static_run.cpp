@@ -326,7 +326,10 @@ void QuasiStaticRun::write_increment() {
 
 RunSummary QuasiStaticRun::finish() {
   progress_->finish();
-  summary_.displacement = whole(state_.u);
+  // On a piece of the model u stays the piece's: nothing as long as the whole model.
+  summary_.displacement = disc_->piece ? state_.u : whole(state_.u);
+  summary_.dofs = halo_ ? static_cast<Index>(la::sum_over_processes({static_cast<double>(owned_dofs_.size())})[0])
+                        : disc_->dofmap.num_dofs();
   summary_.alpha = state_.alpha;
   summary_.damage = state_.history;
   if (disc_->nonlocal) {

@@ -40,6 +40,7 @@ std::vector<double> QuasiStaticRun::owned(const la::Vector& v) const {
 
 std::vector<double> QuasiStaticRun::whole(const std::vector<double>& v) const {
   if (!halo_) return v;
+  PERIMORPH_ASSERT(!disc_->piece, "a run on pieces of the model holds no whole vector");
   la::Vector x = system_->make_vector();
   x.assign_replicated(v);
   return x.to_replicated();

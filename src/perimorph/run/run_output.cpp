@@ -5,7 +5,7 @@
 #include "perimorph/io/pvtu_writer.hpp"
 #include "perimorph/io/vtu_writer.hpp"
 #include "perimorph/la/petsc_session.hpp"
-#include "perimorph/partition/partition.hpp"
+#include "perimorph/setup/piece_model.hpp"
 
 #include <fmt/format.h>
 
@@ -112,7 +112,7 @@ std::string RunOutput::failures_csv_path() const {
 std::span<const Index> RunOutput::cells_written(const setup::Discretization& model) {
   const int processes = la::world_size();
   if (processes > 1 && piece_cells_.empty()) {
-    const std::vector<char> mine = partition::cells_of_part(model.mesh, processes, la::world_rank());
+    const std::vector<char> mine = setup::cells_of_process(model, processes, la::world_rank());
     for (Index c = 0; c < model.mesh.num_cells(); ++c)
       if (mine[static_cast<std::size_t>(c)]) piece_cells_.push_back(c);
   }

@@ -4,8 +4,11 @@
 #include "perimorph/evolution/bond_failure.hpp"
 #include "perimorph/evolution/local_damage.hpp"
 #include "perimorph/evolution/part_support.hpp"
+#include "perimorph/la/petsc_session.hpp"
+#include "perimorph/partition/partition.hpp"
 #include "perimorph/run/quasi_static_run.hpp"
 #include "perimorph/setup/critical_stretch.hpp"
+#include "perimorph/setup/piece_model.hpp"
 
 #include <filesystem>
 #include <limits>
@@ -17,6 +20,28 @@ std::string resolve_output_directory(const casefile::CaseConfig& config, const R
   const std::filesystem::path dir(config.output.directory);
   if (dir.is_absolute()) return dir.string();
   return (std::filesystem::path(config.path).parent_path() / dir).lexically_normal().string();
+}
+
+bool runs_on_pieces(const setup::Discretization& part, const RunOptions& options) {
+  const auto& config = part.config;
+  const int checkpoint_every =
+      options.checkpoint_every >= 0 ? options.checkpoint_every : config.output.checkpoint_every;
+  return !config.fracture.enabled && !part.damage && !config.adaptivity.enabled &&
+         config.solver.op == casefile::SolverOperator::assembled && checkpoint_every == 0 &&
+         options.restart.empty();
+}
+
+setup::Discretization process_model(const casefile::CaseConfig& config, const RunOptions& options,
+                                    const setup::PhaseCallback& on_phase) {
+  const int processes = la::world_size(), rank = la::world_rank();
+  // Each process computes the morphed C and the CG/DG flags of the cells near its part only.
+  setup::Discretization part = setup::build_discretization(
+      config, on_phase,
+      {processes, rank, [](std::vector<char> flags) { return la::union_over_processes(std::move(flags)); }});
+  if (processes == 1 || !runs_on_pieces(part, options)) return part;
+  if (on_phase) on_phase("piece");
+  const std::vector<int> owner = partition::coordinate_bisection(part.mesh, processes).owner;
+  return setup::cut_to_piece(part, owner, rank, la::any_over_processes);
 }
 
 RunSetup prepare_run(const setup::Discretization& disc) {

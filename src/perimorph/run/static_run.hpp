@@ -58,7 +58,10 @@ struct RunSummary {
   /// The last checkpoint written by this run ("" if none) and its increment.
   std::string checkpoint_path;
   int checkpoint_increment = 0;
-  std::vector<double> displacement;  ///< last solution (dof vector)
+  /// The last solution (dof vector): the whole model's, or on a process's
+  /// piece of the model (setup::cut_to_piece) the piece's, in its numbers.
+  std::vector<double> displacement;
+  Index dofs = 0;  ///< of the whole model
   std::vector<std::string> reaction_names;
   std::vector<Vec3> reactions;  ///< last increment, per reaction set
   double strain_energy = 0.0;
@@ -81,6 +84,23 @@ struct RunSummary {
   std::vector<std::pair<Vec3, Vec3>> failed_bond_points;
   std::string output_directory, csv_path, pvd_path;
 };
+
+/// True if a run of `part` (build_discretization's model or part of it) with
+/// `options` can go on each process's piece of the model
+/// (setup::cut_to_piece), where nothing as long as the whole model is kept:
+/// an elastic run (no [fracture], damage or [adaptivity]; their decisions
+/// are shared in whole-model numbers), assembled (the matrix-free operator
+/// reads the whole box grid), without checkpoints or a restart (a checkpoint
+/// holds the whole u). Otherwise a distributed run goes on the part.
+bool runs_on_pieces(const setup::Discretization& part, const RunOptions& options);
+
+/// The model this process runs: its part of the case's model
+/// (build_discretization with one part per process of PETSC_COMM_WORLD; the
+/// whole model on one), cut to its piece (setup::cut_to_piece) where
+/// runs_on_pieces, the part dropped. `on_phase` hears each set-up phase.
+/// Collective.
+setup::Discretization process_model(const casefile::CaseConfig& config, const RunOptions& options,
+                                    const setup::PhaseCallback& on_phase = {});
 
 /// Output directory of a case: the override if given, else the case's
 /// [output] directory resolved against the case file's folder.

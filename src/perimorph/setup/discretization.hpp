@@ -14,10 +14,13 @@
 #include "perimorph/setup/nonlocal_setup.hpp"
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 
 namespace perimorph::setup {
+
+struct PieceNumbers;  // piece_model.hpp
 
 struct Discretization {
   casefile::CaseConfig config;
@@ -52,6 +55,10 @@ struct Discretization {
   /// piece's dofs, and is an error only when it reaches none on every
   /// process (set_dof_nodes). Empty for a mesh that is the whole model's.
   std::function<bool(bool)> any_over_processes{};
+  /// On a process's piece of the model (cut_to_piece): what its local cells,
+  /// nodes and dof nodes are in the whole model, and the part of each cell.
+  /// Null for a mesh that is the whole model's.
+  std::shared_ptr<const PieceNumbers> piece{};
 
   int dim() const { return mesh.dim(); }
   assembly::LocalSpace local_space() const { return {mesh, dofmap, rule, scale}; }

@@ -2,6 +2,7 @@
 
 #include "perimorph/core/error.hpp"
 #include "perimorph/mesh/part_mesh.hpp"
+#include "perimorph/partition/partition.hpp"
 
 namespace perimorph::setup {
 
@@ -30,8 +31,8 @@ std::vector<Index> cells_read(const Discretization& part) {
 
 }  // namespace
 
-PieceModel cut_to_piece(const Discretization& part, std::span<const int> owner, int part_number,
-                        std::function<bool(bool)> any_over_processes) {
+Discretization cut_to_piece(const Discretization& part, std::span<const int> owner, int part_number,
+                            std::function<bool(bool)> any_over_processes) {
   PERIMORPH_ASSERT(static_cast<Index>(owner.size()) == part.mesh.num_cells(), "a part for every cell");
   const std::vector<Index> cells = cells_read(part);
   mesh::PartMesh pm = mesh::part_mesh(part.mesh, cells);
@@ -72,9 +73,19 @@ PieceModel cut_to_piece(const Discretization& part, std::span<const int> owner, 
       std::move(damage),
       part.computed_cells.empty() ? std::vector<char>(cells.size(), 1) : at_cells(part.computed_cells, cells),
       {},
-      std::move(any_over_processes)};
-  return {std::move(disc), std::move(pm.global_cell), std::move(pm.global_node), std::move(piece_owner),
-          std::move(piece_dofs)};
+      std::move(any_over_processes),
+      std::make_shared<const PieceNumbers>(PieceNumbers{std::move(pm.global_cell), std::move(pm.global_node),
+                                                        std::move(piece_owner), part_number,
+                                                        std::move(piece_dofs)})};
+  return disc;
+}
+
+std::vector<char> cells_of_process(const Discretization& disc, int processes, int process) {
+  if (processes == 1 || !disc.piece) return partition::cells_of_part(disc.mesh, processes, process);
+  std::vector<char> mine;
+  mine.reserve(disc.piece->owner.size());
+  for (int o : disc.piece->owner) mine.push_back(o == disc.piece->part ? 1 : 0);
+  return mine;
 }
 
 }  // namespace perimorph::setup

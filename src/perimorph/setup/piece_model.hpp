@@ -18,27 +18,35 @@
 
 namespace perimorph::setup {
 
-struct PieceModel {
-  /// The piece's discretization, in local numbers: its mesh (a mesh::PartMesh's,
-  /// with the box layout kept), dof map, morphed C, non-local points and cell
-  /// graph (the rows of the computed cells), flags, damage laws, computed
-  /// cells. No share_flags: a rebuild for a grown α is not made on a piece.
-  Discretization disc;
+/// What a piece's local numbers are in the whole model (Discretization::piece).
+struct PieceNumbers {
   /// The global number of each local cell and mesh node, ascending.
   std::vector<Index> global_cell, global_node;
-  /// The part of each local cell.
+  /// The part of each local cell; the piece's process's part is `part`.
   std::vector<int> owner;
+  int part = 0;
   /// What the piece decides about its dof nodes (owners and keys).
   partition::PieceDofs dofs;
 };
 
 /// The piece of `part` (built for part `part_number`, or the whole model)
-/// that its process reads, with `owner` the part of every cell of the whole
+/// that its process reads, in local numbers: its mesh (a mesh::PartMesh's,
+/// with the box layout kept), dof map, morphed C, non-local points and cell
+/// graph (the rows of the computed cells), flags, damage laws, computed
+/// cells, and `piece` (PieceNumbers). No share_flags: a rebuild for a grown
+/// α is not made on a piece. `owner` is the part of every cell of the whole
 /// mesh and `any_over_processes` whether a condition holds on any process
 /// (collective; la::), kept in the piece's discretization
 /// (Discretization::any_over_processes). Requires the part's computed cells
 /// to be its part's node neighbours (build_discretization's, cells_near_part).
-PieceModel cut_to_piece(const Discretization& part, std::span<const int> owner, int part_number,
-                        std::function<bool(bool)> any_over_processes);
+Discretization cut_to_piece(const Discretization& part, std::span<const int> owner, int part_number,
+                            std::function<bool(bool)> any_over_processes);
+
+/// The cells of `disc` this process decides on (bond failure, damage,
+/// adaptive α, floating parts) and writes, marked 1: on a piece those of its
+/// part (PieceNumbers), on a part of `processes` > 1 its cells of
+/// partition::coordinate_bisection (part `process`), on one process none
+/// marked and the vector empty (every cell).
+std::vector<char> cells_of_process(const Discretization& disc, int processes, int process);
 
 }  // namespace perimorph::setup

@@ -5,6 +5,8 @@
 #include "perimorph/core/error.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/partition/dof_layout.hpp"
+#include "perimorph/setup/piece_model.hpp"
+#include "perimorph/system/piece_distribution.hpp"
 
 #include <chrono>
 
@@ -95,6 +97,7 @@ AssembledStiffness assemble_stiffness_over_processes(const setup::Discretization
 
 std::shared_ptr<const la::Distribution> distribution_over_processes(const setup::Discretization& model) {
   if (la::world_size() == 1) return nullptr;
+  if (model.piece) return piece_distribution(model.piece->dofs);
   const partition::Partition p = partition::coordinate_bisection(model.mesh, la::world_size());
   return distribution_of(partition::dof_numbering(model.dofmap, p), la::world_rank());
 }
