@@ -117,6 +117,92 @@ TEST(StructuredNonlocalOperator, FlaggedCellsGiveTheirRowsOfTheWholeAssemblyAndP
   }
 }
 
+/// A window of the grid holding some cells (a process's piece, issue 17):
+/// the product, pattern and assembly of its flagged cells are the whole
+/// grid's rows, bit for bit, reading the window's cells only; a flagged cell
+/// whose bond leaves the window or the piece is refused by nodes_read.
+TEST(StructuredNonlocalOperator, OnAWindowGivesTheWholeGridsRowsBitForBit) {
+  const Fixture f = make(3, {8, 7, 6});
+  const std::array<Index, 3> n{8, 7, 6};
+  // Flagged: the cells with i ≥ 5 (a part along x); the window: i ≥ 1, beyond their reach to the left.
+  const assembly::GridWindow window{{1, 0, 0}, {7, 7, 6}};
+  std::vector<Index> node_of_window;  // piece-local nodes: the window's cells in order
+  std::vector<Index> whole_cell;      // the grid cell of each window cell
+  std::vector<char> flagged;
+  for (Index k = 0; k < 6; ++k)
+    for (Index j = 0; j < 7; ++j)
+      for (Index i = 1; i < 8; ++i) {
+        whole_cell.push_back(i + n[0] * (j + n[1] * k));
+        node_of_window.push_back(static_cast<Index>(node_of_window.size()));
+        flagged.push_back(i >= 5 ? 1 : 0);
+      }
+  const std::vector<double> x_whole = random_vector(f.model.dofmap.num_dofs());
+  std::vector<double> y_whole(x_whole.size());
+  f.K.apply(x_whole, y_whole);
+  const assembly::OffsetBlocks blocks = [&] {
+    const auto small = setup::build_discretization(grid(3, {7, 7, 7}));
+    return assembly::offset_blocks(small.nonlocal_space(), 3 + 7 * 3 + 49 * 3);
+  }();
+  const assembly::StructuredNonlocalOperator W(blocks, n, window, node_of_window);
+  // x on the window only (the whole model's values there), y of the flagged rows.
+  std::vector<double> x(node_of_window.size() * 3), y(x.size(), std::nan(""));
+  for (std::size_t w = 0; w < whole_cell.size(); ++w)
+    for (std::size_t d = 0; d < 3; ++d)
+      x[3 * w + d] = x_whole[3 * static_cast<std::size_t>(f.model.dofmap.cell_nodes(whole_cell[w])[0]) + d];
+  W.apply(x, y, flagged);
+  for (std::size_t w = 0; w < whole_cell.size(); ++w) {
+    if (!flagged[w]) continue;
+    const auto node = static_cast<std::size_t>(f.model.dofmap.cell_nodes(whole_cell[w])[0]);
+    for (std::size_t d = 0; d < 3; ++d) EXPECT_EQ(y[3 * w + d], y_whole[3 * node + d]) << "window cell " << w;
+  }
+  // It reads the whole grid's reach of the flagged cells, in window numbers.
+  std::vector<char> flagged_whole(static_cast<std::size_t>(f.model.mesh.num_cells()), 0);
+  for (std::size_t w = 0; w < whole_cell.size(); ++w)
+    flagged_whole[static_cast<std::size_t>(whole_cell[w])] = flagged[w];
+  std::vector<Index> reach;
+  for (Index node : f.K.nodes_read(flagged_whole))
+    for (std::size_t w = 0; w < whole_cell.size(); ++w)
+      if (f.model.dofmap.cell_nodes(whole_cell[w])[0] == node) reach.push_back(static_cast<Index>(w));
+  std::ranges::sort(reach);
+  EXPECT_EQ(W.nodes_read(flagged), reach);
+  // Pattern and assembly: the whole grid's rows, renumbered.
+  testing::DenseInserter whole(f.model.dofmap.num_dofs()), mine(static_cast<Index>(x.size()));
+  f.K.assemble(whole);
+  W.assemble(mine, flagged);
+  const assembly::SparsityPattern p = W.sparsity(flagged), all = f.K.sparsity();
+  for (std::size_t w = 0; w < whole_cell.size(); ++w) {
+    const auto row = p.row(static_cast<Index>(w));
+    if (!flagged[w]) {
+      EXPECT_TRUE(row.empty());
+      continue;
+    }
+    const Index node = f.model.dofmap.cell_nodes(whole_cell[w])[0];
+    std::vector<Index> expected;
+    for (std::size_t v = 0; v < whole_cell.size(); ++v)
+      if (std::ranges::find(all.row(node), f.model.dofmap.cell_nodes(whole_cell[v])[0]) !=
+          all.row(node).end())
+        expected.push_back(static_cast<Index>(v));
+    EXPECT_TRUE(std::ranges::equal(row, expected)) << "window cell " << w;
+    for (std::size_t v = 0; v < whole_cell.size(); ++v) {
+      const Index col = f.model.dofmap.cell_nodes(whole_cell[v])[0];
+      EXPECT_TRUE((mine.A.block(static_cast<Index>(3 * w), static_cast<Index>(3 * v), 3, 3).array() ==
+                   whole.A.block(3 * node, 3 * col, 3, 3).array())
+                      .all());
+    }
+  }
+  // A flagged cell at i = 2 reaches i = 0 (the horizon is 2.01 cells): outside the window.
+  std::vector<char> too_far(flagged.size(), 0);
+  too_far[1] = 1;
+  EXPECT_THROW((void)W.nodes_read(too_far), Error);
+  // A cell of the window the piece does not hold (−1) is refused too.
+  std::vector<Index> holed = node_of_window;
+  holed[3] = -1;
+  const assembly::StructuredNonlocalOperator H(blocks, n, window, holed);
+  std::vector<char> next_to_hole(flagged.size(), 0);
+  next_to_hole[4] = 1;
+  EXPECT_THROW((void)H.nodes_read(next_to_hole), Error);
+}
+
 TEST(StructuredNonlocalOperator, SameForAnyThreadCount) {
   const Fixture f = make(3, {8, 7, 6});
   const std::vector<double> x = random_vector(f.model.dofmap.num_dofs());

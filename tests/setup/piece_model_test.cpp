@@ -55,7 +55,8 @@ void expect_cells_of(const setup::Discretization& piece, const setup::Discretiza
       }
     }
     std::vector<Index> row;
-    for (Index f : d.nonlocal->graph.row(k)) row.push_back(piece.piece->global_cell[static_cast<std::size_t>(f)]);
+    for (Index f : d.nonlocal->graph.row(k))
+      row.push_back(piece.piece->global_cell[static_cast<std::size_t>(f)]);
     const auto whole_row = part.nonlocal->graph.row(g);
     EXPECT_EQ(row, std::vector<Index>(whole_row.begin(), whole_row.end())) << "cell " << g;
     if (part.damage) {

@@ -5,9 +5,9 @@
 #include "perimorph/core/error.hpp"
 #include "perimorph/dofs/dof_map.hpp"
 #include "perimorph/la/petsc_session.hpp"
-#include "perimorph/setup/piece_model.hpp"
 #include "perimorph/peridynamics/pair_kernel.hpp"
 #include "perimorph/setup/critical_stretch.hpp"
+#include "perimorph/setup/piece_model.hpp"
 
 #include <fmt/format.h>
 

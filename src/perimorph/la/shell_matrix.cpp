@@ -65,8 +65,7 @@ ShellMatrix::ShellMatrix(Index size, int block_size, Apply apply)
 
 ShellMatrix::ShellMatrix(std::shared_ptr<const Distribution> distribution, int block_size, Apply apply,
                          std::vector<Index> reads)
-    : ShellMatrix(distribution, block_size, std::move(apply), distribution->num_nodes() * block_size,
-                  std::move(reads)) {}
+    : ShellMatrix(distribution, block_size, std::move(apply), PETSC_DETERMINE, std::move(reads)) {}
 
 ShellMatrix::ShellMatrix(std::shared_ptr<const Distribution> distribution, int block_size, Apply apply,
                          Index size, std::vector<Index> reads)
@@ -76,7 +75,12 @@ ShellMatrix::ShellMatrix(std::shared_ptr<const Distribution> distribution, int b
   context_->block_size = block_size;
   if (context_->distribution) context_->gather.emplace(context_->distribution, block_size, std::move(reads));
   const Index local = context_->distribution ? context_->distribution->owned_nodes() * block_size : size;
+  // Spread over processes the global size is the sum of the owned rows (the
+  // assembly numbering may be a piece's, shorter than the whole model's).
   PM_PETSC(MatCreateShell(PETSC_COMM_WORLD, local, local, size, size, context_.get(), &m_));
+  PetscInt rows = 0;
+  PM_PETSC(MatGetSize(m_, &rows, nullptr));
+  size_ = rows;
   PM_PETSC(MatSetBlockSize(m_, block_size));
   PM_PETSC(MatShellSetOperation(m_, MATOP_MULT, reinterpret_cast<void (*)(void)>(&shell_mult)));
   PM_PETSC(MatSetOption(m_, MAT_SYMMETRIC, PETSC_TRUE));

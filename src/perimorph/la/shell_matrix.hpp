@@ -52,7 +52,8 @@ class ShellMatrix {
   struct Context;
 
  private:
-  /// Both constructors: `size` rows, `distribution` null on one process.
+  /// Both constructors: `size` rows (where spread, the sum of the owned
+  /// rows: PETSC_DETERMINE), `distribution` null on one process.
   ShellMatrix(std::shared_ptr<const Distribution> distribution, int block_size, Apply apply, Index size,
               std::vector<Index> reads);
   PetscMatHandle m_ = nullptr;

@@ -328,8 +328,9 @@ RunSummary QuasiStaticRun::finish() {
   progress_->finish();
   // On a piece of the model u stays the piece's: nothing as long as the whole model.
   summary_.displacement = disc_->piece ? state_.u : whole(state_.u);
-  summary_.dofs = halo_ ? static_cast<Index>(la::sum_over_processes({static_cast<double>(owned_dofs_.size())})[0])
-                        : disc_->dofmap.num_dofs();
+  summary_.dofs =
+      halo_ ? static_cast<Index>(la::sum_over_processes({static_cast<double>(owned_dofs_.size())})[0])
+            : disc_->dofmap.num_dofs();
   summary_.alpha = state_.alpha;
   summary_.damage = state_.history;
   if (disc_->nonlocal) {

@@ -72,8 +72,9 @@ void QuasiStaticRun::stop_if_asked() {
   // last one: it can be kept as a checkpoint.
   std::string saved;
   if (disc_->piece && i > 1) {
-    saved = " No checkpoint is written: the run went on pieces of the model (run::runs_on_pieces), whose "
-            "checkpoint is not made yet; give --checkpoint-every to run with checkpoints.";
+    saved =
+        " No checkpoint is written: the run went on pieces of the model (run::runs_on_pieces), whose "
+        "checkpoint is not made yet; give --checkpoint-every to run with checkpoints.";
   } else if (rec_.break_iterations == 0 && i > 1 && summary_.checkpoint_increment != i - 1) {
     const double lambda = state_.load_factor;
     state_.increment = i - 1;

@@ -26,8 +26,7 @@ bool runs_on_pieces(const setup::Discretization& part, const RunOptions& options
   const auto& config = part.config;
   const int checkpoint_every =
       options.checkpoint_every >= 0 ? options.checkpoint_every : config.output.checkpoint_every;
-  return !config.fracture.enabled && !part.damage && !config.adaptivity.enabled &&
-         config.solver.op == casefile::SolverOperator::assembled && checkpoint_every == 0 &&
+  return !config.fracture.enabled && !part.damage && !config.adaptivity.enabled && checkpoint_every == 0 &&
          options.restart.empty();
 }
 

@@ -89,9 +89,9 @@ struct RunSummary {
 /// `options` can go on each process's piece of the model
 /// (setup::cut_to_piece), where nothing as long as the whole model is kept:
 /// an elastic run (no [fracture], damage or [adaptivity]; their decisions
-/// are shared in whole-model numbers), assembled (the matrix-free operator
-/// reads the whole box grid), without checkpoints or a restart (a checkpoint
-/// holds the whole u). Otherwise a distributed run goes on the part.
+/// are shared in whole-model numbers), assembled or matrix-free, without
+/// checkpoints or a restart (a checkpoint holds the whole u). Otherwise a
+/// distributed run goes on the part.
 bool runs_on_pieces(const setup::Discretization& part, const RunOptions& options);
 
 /// The model this process runs: its part of the case's model

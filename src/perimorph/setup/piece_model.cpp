@@ -4,6 +4,10 @@
 #include "perimorph/mesh/part_mesh.hpp"
 #include "perimorph/partition/partition.hpp"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+
 namespace perimorph::setup {
 
 namespace {
@@ -17,16 +21,49 @@ std::vector<T> at_cells(const std::vector<T>& v, std::span<const Index> cells) {
   return out;
 }
 
-/// The cells the process of `part` reads: those whose C it computes and
-/// those whose non-local points it stores, ascending (every cell for the
-/// whole model).
-std::vector<Index> cells_read(const Discretization& part) {
-  std::vector<Index> cells;
-  for (Index c = 0; c < part.mesh.num_cells(); ++c) {
-    const bool computed = part.computed_cells.empty() || part.computed_cells[static_cast<std::size_t>(c)];
-    if (computed || (part.nonlocal && part.nonlocal->points.holds(c))) cells.push_back(c);
+/// The cells of the grid within `r` cells of a marked one along each axis
+/// (a cube around each), marked 1: separable, one axis at a time.
+std::vector<char> dilated(std::vector<char> marked, const mesh::StructuredLayout& layout, Index r) {
+  const std::array<Index, 3> n = layout.cells;
+  const std::array<Index, 3> stride{1, n[0], n[0] * n[1]};
+  std::vector<char> next(marked.size());
+  for (std::size_t d = 0; d < 3; ++d) {
+    if (n[d] == 1) continue;
+    for (Index c = 0; c < layout.num_box_cells(); ++c) {
+      const Index i = (c / stride[d]) % n[d];
+      char any = 0;
+      for (Index t = std::max<Index>(i - r, 0); t <= std::min(i + r, n[d] - 1) && !any; ++t)
+        any = marked[static_cast<std::size_t>(c + (t - i) * stride[d])];
+      next[static_cast<std::size_t>(c)] = any;
+    }
+    marked.swap(next);
   }
-  return cells;
+  return marked;
+}
+
+/// The cells the process of `part` reads: those whose C it computes and
+/// those whose non-local points it stores (every cell for the whole model),
+/// ascending; with the matrix-free operator (whose cell graph is the diagonal
+/// one), every cell within its bond reach: the cube of ⌈δ / h⌉ + 1 cells
+/// around each computed cell, the reach of the patch its blocks come from
+/// (system::grid_offset_blocks).
+std::vector<Index> cells_read(const Discretization& part) {
+  const auto cells = static_cast<std::size_t>(part.mesh.num_cells());
+  std::vector<char> read(cells, 0);
+  for (std::size_t c = 0; c < cells; ++c)
+    read[c] = part.computed_cells.empty() || part.computed_cells[c] ||
+              (part.nonlocal && part.nonlocal->points.holds(static_cast<Index>(c)));
+  if (part.config.solver.op == casefile::SolverOperator::matrix_free && part.mesh.structure) {
+    const auto& layout = *part.mesh.structure;
+    PERIMORPH_ASSERT(layout.box_cells.empty(), "a part of the whole mesh");
+    const double h = layout.spacing.head(part.dim()).minCoeff();
+    read =
+        dilated(std::move(read), layout, static_cast<Index>(std::ceil(part.config.nonlocal.horizon / h)) + 1);
+  }
+  std::vector<Index> out;
+  for (std::size_t c = 0; c < cells; ++c)
+    if (read[c]) out.push_back(static_cast<Index>(c));
+  return out;
 }
 
 }  // namespace

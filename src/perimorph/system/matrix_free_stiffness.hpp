@@ -20,8 +20,9 @@ namespace perimorph::system {
 struct MatrixFreeStiffness {
   assembly::StructuredNonlocalOperator K;  ///< the case's stiffness, unconstrained
   la::Matrix preconditioner;               ///< the short-horizon stiffness, unconstrained, finalized
-  /// On several processes, per cell, 1 for the cells (DG0: one node each)
-  /// whose rows this process owns (preconditioner.distribution()); empty on one.
+  /// On several processes, per cell of K's window (the grid, or the box of a
+  /// process's piece of the model), 1 for the cells (DG0: one node each) whose
+  /// rows this process owns (preconditioner.distribution()); empty on one.
   std::vector<char> owned_cells;
 };
 
