@@ -3,7 +3,8 @@
 // part (build_discretization with a ModelPart) cut to the cells the process
 // reads — those whose morphed C it computes (its part and their node
 // neighbours) and those whose non-local points it stores (every cell its
-// bonds reach) — as a model of its own, numbered locally in the global
+// bonds reach; with the matrix-free operator, whose cell graph holds no bond,
+// the cells of its reach) — as a model of its own, numbered locally in the global
 // order, with the global number of each cell and node, the part of each
 // cell and the keys and owners of its dof nodes (partition::piece_dofs), from
 // which system::piece_distribution numbers them. Assembled on its
