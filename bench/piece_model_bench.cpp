@@ -26,6 +26,7 @@
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/partition/dof_layout.hpp"
 #include "perimorph/partition/partition.hpp"
+#include "perimorph/run/static_run.hpp"
 #include "perimorph/setup/discretization.hpp"
 #include "perimorph/setup/piece_model.hpp"
 #include "perimorph/system/piece_distribution.hpp"
@@ -55,10 +56,7 @@ Model& model() {
   static std::unique_ptr<Model> m;
   if (m) return *m;
   const auto config = casefile::parse_case_file(case_path);
-  auto part = setup::build_discretization(config, {},
-                                          {la::world_size(), la::world_rank(), [](std::vector<char> flags) {
-                                             return la::union_over_processes(std::move(flags));
-                                           }});
+  auto part = run::process_part(config);
   auto p = partition::coordinate_bisection(part.mesh, la::world_size());
   m = std::make_unique<Model>(Model{std::move(part), std::move(p)});
   return *m;

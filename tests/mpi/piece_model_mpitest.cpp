@@ -14,6 +14,7 @@
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/partition/dof_layout.hpp"
 #include "perimorph/partition/partition.hpp"
+#include "perimorph/run/static_run.hpp"
 #include "perimorph/setup/boundary_conditions.hpp"
 #include "perimorph/setup/discretization.hpp"
 #include "perimorph/setup/piece_model.hpp"
@@ -36,17 +37,10 @@ namespace {
 using testing::owned_rows;
 using testing::Rows;
 
-setup::Discretization part_of(const casefile::CaseConfig& config) {
-  return setup::build_discretization(config, {},
-                                     {la::world_size(), la::world_rank(), [](std::vector<char> flags) {
-                                        return la::union_over_processes(std::move(flags));
-                                      }});
-}
-
 TEST(PieceModel, AssemblesTheWholeModelsRowsBitForBit) {
   for (const auto& [name, config] : testing::model_part_cases()) {
     SCOPED_TRACE(name);
-    const setup::Discretization part = part_of(config);
+    const setup::Discretization part = run::process_part(config);
     const auto p = partition::coordinate_bisection(part.mesh, la::world_size());
     const setup::Discretization piece =
         setup::cut_to_piece(part, p.owner, la::world_rank(), la::any_over_processes);
@@ -82,7 +76,7 @@ std::vector<double> solved(const setup::Discretization& model,
 TEST(PieceModel, SolvesTheCaseAsTheWholeModelHoldingUAtItsNodesOnly) {
   for (const auto& [name, config] : testing::loaded_model_cases()) {
     SCOPED_TRACE(name);
-    const setup::Discretization part = part_of(config);
+    const setup::Discretization part = run::process_part(config);
     const auto p = partition::coordinate_bisection(part.mesh, la::world_size());
     const setup::Discretization piece =
         setup::cut_to_piece(part, p.owner, la::world_rank(), la::any_over_processes);
@@ -121,7 +115,7 @@ TEST(PieceModel, SolvesTheCaseAsTheWholeModelHoldingUAtItsNodesOnly) {
 /// every process (collective: none waits for another).
 TEST(PieceModel, ASetMayMissAPieceButNotEveryPiece) {
   const auto config = testing::loaded_model_cases().back().config;  // the mixed plate pulled along x
-  const setup::Discretization part = part_of(config);
+  const setup::Discretization part = run::process_part(config);
   const auto p = partition::coordinate_bisection(part.mesh, la::world_size());
   setup::Discretization piece = setup::cut_to_piece(part, p.owner, la::world_rank(), la::any_over_processes);
   const bool mine = !piece.mesh.node_sets.at("xmax").empty();

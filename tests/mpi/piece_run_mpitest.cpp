@@ -74,10 +74,7 @@ TEST(PieceRun, GivesTheRunOnThePartsBitForBit) {
     const run::RunOptions on_part{(root / stem / "part").string(), true},
         on_piece{(root / stem / "piece").string(), true};
     // This process's part of the whole model, as a run built it before it went on pieces.
-    const setup::Discretization part = setup::build_discretization(
-        config, {}, {la::world_size(), la::world_rank(), [](std::vector<char> flags) {
-                       return la::union_over_processes(std::move(flags));
-                     }});
+    const setup::Discretization part = run::process_part(config);
     ASSERT_TRUE(run::runs_on_pieces(part, on_piece));
     const setup::Discretization piece = run::process_model(config, on_piece);
     ASSERT_EQ(piece.piece != nullptr, la::world_size() > 1) << "cut to pieces on several processes only";

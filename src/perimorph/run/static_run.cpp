@@ -30,13 +30,18 @@ bool runs_on_pieces(const setup::Discretization& part, const RunOptions& options
          options.restart.empty();
 }
 
+setup::Discretization process_part(const casefile::CaseConfig& config, const setup::PhaseCallback& on_phase) {
+  // Each process computes the morphed C and the CG/DG flags of the cells near its part only.
+  return setup::build_discretization(config, on_phase,
+                                     {la::world_size(), la::world_rank(), [](std::vector<char> flags) {
+                                        return la::union_over_processes(std::move(flags));
+                                      }});
+}
+
 setup::Discretization process_model(const casefile::CaseConfig& config, const RunOptions& options,
                                     const setup::PhaseCallback& on_phase) {
   const int processes = la::world_size(), rank = la::world_rank();
-  // Each process computes the morphed C and the CG/DG flags of the cells near its part only.
-  setup::Discretization part = setup::build_discretization(
-      config, on_phase,
-      {processes, rank, [](std::vector<char> flags) { return la::union_over_processes(std::move(flags)); }});
+  setup::Discretization part = process_part(config, on_phase);
   if (processes == 1 || !runs_on_pieces(part, options)) return part;
   if (on_phase) on_phase("piece");
   const std::vector<int> owner = partition::coordinate_bisection(part.mesh, processes).owner;

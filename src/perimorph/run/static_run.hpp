@@ -94,11 +94,15 @@ struct RunSummary {
 /// distributed run goes on the part.
 bool runs_on_pieces(const setup::Discretization& part, const RunOptions& options);
 
-/// The model this process runs: its part of the case's model
-/// (build_discretization with one part per process of PETSC_COMM_WORLD; the
-/// whole model on one), cut to its piece (setup::cut_to_piece) where
-/// runs_on_pieces, the part dropped. `on_phase` hears each set-up phase.
-/// Collective.
+/// This process's part of the case's model: build_discretization with one
+/// part per process of PETSC_COMM_WORLD (the CG/DG flags shared by their
+/// union over the processes); the whole model on one. `on_phase` hears each
+/// set-up phase. Collective.
+setup::Discretization process_part(const casefile::CaseConfig& config,
+                                   const setup::PhaseCallback& on_phase = {});
+
+/// The model this process runs: its process_part, cut to its piece
+/// (setup::cut_to_piece) where runs_on_pieces, the part dropped. Collective.
 setup::Discretization process_model(const casefile::CaseConfig& config, const RunOptions& options,
                                     const setup::PhaseCallback& on_phase = {});
 
