@@ -124,6 +124,32 @@ for d in two two_then_one one_then_two; do /usr/bin/python3 \"$3\" \"$4/one\" \"
     FAIL_REGULAR_EXPRESSION "differences|missing in"
     TIMEOUT 300)
 
+  # The same for an elastic run, which goes on the processes' pieces of the
+  # model (run::runs_on_pieces): its checkpoint is written in the whole
+  # model's numbering (system::WholeNumbering). plate_tension's checkpoint of
+  # increment 3 written on 2 processes continues on 1 and on 3, one written on
+  # 1 continues on 2, each the uninterrupted run on 1 within the Krylov
+  # solves' 1e-7 (as the same-answer tests above); continued on 2, the
+  # uninterrupted run on 2 bit for bit.
+  set(out ${CMAKE_CURRENT_BINARY_DIR}/cli_output/mpi_piece_checkpoint)
+  add_test(NAME cli_mpi_checkpoint_of_a_run_on_pieces_continues_on_any_number_of_processes
+    COMMAND sh -c "set -e; rm -rf \"$4\"; \"$1\" run \"$2\" -o \"$4/one\" --quiet --checkpoint-every 3; \
+\"$0\" -n 2 \"$1\" run \"$2\" -o \"$4/two\" --quiet --checkpoint-every 3; \
+for d in two_then_one two_then_three two_then_two; do cp -r \"$4/two\" \"$4/$d\"; done; cp -r \"$4/one\" \"$4/one_then_two\"; \
+\"$1\" run \"$2\" -o \"$4/two_then_one\" --restart \"$4/two_then_one\"; \
+\"$0\" -n 3 \"$1\" run \"$2\" -o \"$4/two_then_three\" --restart \"$4/two_then_three\"; \
+\"$0\" -n 2 \"$1\" run \"$2\" -o \"$4/one_then_two\" --restart \"$4/one_then_two\"; \
+\"$0\" -n 2 \"$1\" run \"$2\" -o \"$4/two_then_two\" --restart \"$4/two_then_two\" --quiet; \
+for d in two two_then_one two_then_three one_then_two; do /usr/bin/python3 \"$3\" \"$4/one\" \"$4/$d\" 1e-7; done; \
+/usr/bin/python3 \"$5\" \"$4/two\" \"$4/two_then_two\""
+            ${MPIEXEC_EXECUTABLE} $<TARGET_FILE:perimorph_cli> ${PROJECT_SOURCE_DIR}/examples/plate_tension/case.toml
+            ${CMAKE_CURRENT_SOURCE_DIR}/cli/compare_distributed.py ${out} ${CMAKE_CURRENT_SOURCE_DIR}/cli/compare_runs.py)
+  set_tests_properties(cli_mpi_checkpoint_of_a_run_on_pieces_continues_on_any_number_of_processes PROPERTIES
+    ENVIRONMENT "${PM_MPI_ENV};OMP_NUM_THREADS=1"
+    PASS_REGULAR_EXPRESSION "continuing after increment 3 of 4.*continuing after increment 3 of 4.*continuing after increment 3 of 4.*tolerance 1e-07: ok.*tolerance 1e-07: ok.*tolerance 1e-07: ok.*tolerance 1e-07: ok.*files compared, 0 differ"
+    FAIL_REGULAR_EXPRESSION "differences|missing in"
+    TIMEOUT 300)
+
   # Run after run the same bits on 2 processes (a threshold model amplifies
   # round-off): the flagship, whose factorization (CG + a kept Cholesky factor,
   # SuperLU_DIST's on several processes) MUMPS made differ at round-off from

@@ -120,6 +120,11 @@ class Matrix final : public assembly::MatrixInserter {
     std::vector<double> values;
   };
   Replicated replicated() const;
+  /// The same in another numbering of the dof nodes: `node_of_distributed`
+  /// names the node of each distributed dof node (a permutation; on a piece
+  /// of the model, whose assembly numbering covers the piece only, the whole
+  /// model's: system::WholeNumbering). Collective.
+  Replicated replicated(std::span<const Index> node_of_distributed) const;
   /// The matrix of `r`, an exact copy: Matrix(pattern) with its values, or,
   /// with a distribution, Matrix(pattern, distribution), each process setting
   /// the rows it owns (collective). Throws Error if the values do not fit.

@@ -17,6 +17,10 @@
 namespace perimorph::la {
 
 Matrix::Replicated Matrix::replicated() const {
+  return replicated({});
+}
+
+Matrix::Replicated Matrix::replicated(std::span<const Index> node_of_distributed) const {
   Replicated out;
   if (!distribution_) {
     out.pattern = block_pattern();
@@ -28,7 +32,16 @@ Matrix::Replicated Matrix::replicated() const {
   release_view();
   PetscInt bs = 1;
   PM_PETSC(MatGetBlockSize(m_, &bs));
-  const std::vector<Index> to_assembly = assembly_rows();
+  std::vector<Index> to_assembly;
+  if (node_of_distributed.empty()) {
+    to_assembly = assembly_rows();
+  } else {
+    to_assembly.resize(node_of_distributed.size() * static_cast<std::size_t>(bs));
+    for (std::size_t d = 0; d < node_of_distributed.size(); ++d)
+      for (PetscInt k = 0; k < bs; ++k)
+        to_assembly[d * static_cast<std::size_t>(bs) + static_cast<std::size_t>(k)] =
+            node_of_distributed[d] * bs + k;
+  }
   const auto n = static_cast<Index>(to_assembly.size());
   // This process's rows, each as [row, count, columns..., values...] (the
   // numbers exact in doubles below 2^53), its columns ascending.

@@ -9,13 +9,42 @@
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/run/checkpoint.hpp"
 #include "perimorph/run/quasi_static_run.hpp"
+#include "perimorph/setup/piece_model.hpp"
+#include "perimorph/system/whole_numbering.hpp"
 
 #include <fmt/format.h>
 
 #include <filesystem>
 #include <optional>
+#include <utility>
 
 namespace perimorph::run {
+
+namespace {
+
+/// On a piece of the model (setup::cut_to_piece), its whole numbering and
+/// the whole mesh's cell count (collective); else none.
+struct WholeModel {
+  system::WholeNumbering numbering;
+  Index cells = 0;
+};
+std::optional<WholeModel> whole_model(const setup::Discretization& disc) {
+  if (!disc.piece) return std::nullopt;
+  Index mine = 0;
+  for (int p : disc.piece->owner) mine += p == disc.piece->part ? 1 : 0;
+  return WholeModel{system::WholeNumbering(disc.piece->dofs, disc.dim()),
+                    static_cast<Index>(la::sum_over_processes({static_cast<double>(mine)})[0])};
+}
+
+/// Only elastic runs go on pieces (run::runs_on_pieces): a state with no
+/// failed bond, held dof or damage, which the whole numbering carries whole.
+void check_elastic(const evolution::RunState& state) {
+  PERIMORPH_ASSERT(state.failed_in_order.empty() && state.cell_dissipated.empty() &&
+                       state.held_dofs.empty() && state.history.empty(),
+                   "only an elastic run goes on pieces of the model");
+}
+
+}  // namespace
 
 std::string basename_of(const casefile::CaseConfig& config) {
   if (!config.output.basename.empty()) return config.output.basename;
@@ -28,7 +57,9 @@ void QuasiStaticRun::checkpoint_if_due() {
 
 void QuasiStaticRun::save_checkpoint() {
   // Process 0 writes it; every process takes part in gathering the
-  // distributed system and the vectors a process holds at its halo only.
+  // distributed system and the vectors a process holds at its halo only,
+  // in the whole model's numbering (on a piece, WholeNumbering's).
+  const std::optional<WholeModel> whole_of = whole_model(*disc_);
   std::optional<io::AtomicFile> file;
   la::on_process_zero([&] { file.emplace(checkpoint_path_); });
   core::BinaryWriter out([&](std::string_view bytes) {
@@ -43,10 +74,22 @@ void QuasiStaticRun::save_checkpoint() {
   out.put<int>(summary_.preconditioner_rebuilds);
   out.put<int>(summary_.direct_fallback_solves);
   out.put<int>(summary_.most_null_pivots);
-  out.put_vector(owned_dofs_.whole(u_prev_));
-  out.put_vector(owned_dofs_.whole(fint_prev_));
-  state_.u = whole(state_.u);
-  evolution::save_state(state_, out);
+  if (whole_of) {
+    out.put_vector(whole_of->numbering.whole(u_prev_));
+    out.put_vector(whole_of->numbering.whole(fint_prev_));
+    check_elastic(state_);
+    std::vector<double> u_piece = std::move(state_.u);
+    state_.u = whole_of->numbering.whole(owned_dofs_.of(u_piece));
+    const Index piece_cells = std::exchange(state_.num_cells, whole_of->cells);
+    evolution::save_state(state_, out);
+    state_.u = std::move(u_piece);
+    state_.num_cells = piece_cells;
+  } else {
+    out.put_vector(owned_dofs_.whole(u_prev_));
+    out.put_vector(owned_dofs_.whole(fint_prev_));
+    state_.u = whole(state_.u);
+    evolution::save_state(state_, out);
+  }
   out.tag("output");
   const OutputPosition at = output_->position();
   for (std::size_t rows : {at.rows, at.alpha_rows, at.failure_rows, at.failed_bond_rows})
@@ -79,10 +122,14 @@ void QuasiStaticRun::restore(const std::string& path, const RunOptions& /*option
   alpha::AlphaField alpha = evolution::restore_alpha(in);
   if (alpha.region_list().size() != state_.alpha.region_list().size() ||
       alpha.constant_value() != state_.alpha.constant_value()) {
+    if (disc_->piece)
+      in.fail("a grown alpha, which a run on pieces of the model cannot rebuild (run::runs_on_pieces)");
     owned_ = std::make_unique<setup::Discretization>(setup::rebuild_for_alpha(*disc_, alpha));
     disc_ = owned_.get();
   }
-  const Index n = disc_->dofmap.num_dofs();
+  // On a piece, the checkpoint's vectors are the whole model's (save_checkpoint).
+  const std::optional<WholeModel> whole_of = whole_model(*disc_);
+  const Index n = whole_of ? whole_of->numbering.whole_dofs() : disc_->dofmap.num_dofs();
 
   in.expect("run");
   const double elapsed = in.get<double>();
@@ -98,7 +145,20 @@ void QuasiStaticRun::restore(const std::string& path, const RunOptions& /*option
   if (u_prev_.size() != static_cast<std::size_t>(n) || fint_prev_.size() != u_prev_.size())
     in.fail(fmt::format("vectors of {} values where the model has {} dofs", u_prev_.size(), n));
   state_ = evolution::RunState(*disc_);
-  evolution::restore_state(state_, in);
+  if (whole_of) {
+    u_prev_ = whole_of->numbering.piece_of(u_prev_);  // the constructor keeps their owned entries
+    fint_prev_ = whole_of->numbering.piece_of(fint_prev_);
+    const Index piece_cells = std::exchange(state_.num_cells, whole_of->cells);
+    state_.u.assign(static_cast<std::size_t>(n), 0.0);
+    evolution::restore_state(state_, in);
+    if (!state_.failed_in_order.empty() || !state_.cell_dissipated.empty() || !state_.held_dofs.empty())
+      in.fail(
+          "failed bonds or held dofs, which a run on pieces of the model cannot take (run::runs_on_pieces)");
+    state_.u = whole_of->numbering.piece_of(state_.u);
+    state_.num_cells = piece_cells;
+  } else {
+    evolution::restore_state(state_, in);
+  }
   if (state_.increment < 1 || state_.increment > increments())
     in.fail(fmt::format("increment {} of a case with {}", state_.increment, increments()));
   summary_.restarted_after = state_.increment;

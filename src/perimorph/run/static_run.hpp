@@ -85,14 +85,12 @@ struct RunSummary {
   std::string output_directory, csv_path, pvd_path;
 };
 
-/// True if a run of `part` (build_discretization's model or part of it) with
-/// `options` can go on each process's piece of the model
-/// (setup::cut_to_piece), where nothing as long as the whole model is kept:
-/// an elastic run (no [fracture], damage or [adaptivity]; their decisions
-/// are shared in whole-model numbers), assembled or matrix-free, without
-/// checkpoints or a restart (a checkpoint holds the whole u). Otherwise a
-/// distributed run goes on the part.
-bool runs_on_pieces(const setup::Discretization& part, const RunOptions& options);
+/// True if a run of `part` (build_discretization's model or part of it) can go on each process's piece of the
+/// model (setup::cut_to_piece), where nothing as long as the whole model is kept: an elastic run (no
+/// [fracture], damage or [adaptivity]; their decisions are shared in whole-model numbers), assembled or
+/// matrix-free, with or without checkpoints and restarts (a checkpoint is written in the whole model's
+/// numbering: system::WholeNumbering). Otherwise a distributed run goes on the part.
+bool runs_on_pieces(const setup::Discretization& part);
 
 /// This process's part of the case's model: build_discretization with one
 /// part per process of PETSC_COMM_WORLD (the CG/DG flags shared by their
@@ -103,7 +101,7 @@ setup::Discretization process_part(const casefile::CaseConfig& config,
 
 /// The model this process runs: its process_part, cut to its piece
 /// (setup::cut_to_piece) where runs_on_pieces, the part dropped. Collective.
-setup::Discretization process_model(const casefile::CaseConfig& config, const RunOptions& options,
+setup::Discretization process_model(const casefile::CaseConfig& config,
                                     const setup::PhaseCallback& on_phase = {});
 
 /// Output directory of a case: the override if given, else the case's

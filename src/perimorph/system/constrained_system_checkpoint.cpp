@@ -1,21 +1,29 @@
 // ConstrainedSystem::save and ::restored (constrained_system.hpp): the system
 // of a checkpoint, bit for bit, on any number of processes (the matrices and
-// vectors saved in the assembly's numbering; collective).
+// vectors saved in the whole model's numbering: the assembly's on a part of
+// the model, WholeNumbering's on a piece; collective).
 
 #include "perimorph/core/binary_stream.hpp"
+#include "perimorph/la/petsc_session.hpp"
+#include "perimorph/setup/piece_model.hpp"
 #include "perimorph/system/constrained_system.hpp"
 #include "perimorph/system/stiffness.hpp"
+#include "perimorph/system/whole_numbering.hpp"
 
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <optional>
 
 namespace perimorph::system {
 
 namespace {
 
-/// The matrix in the assembly's numbering, whatever the number of processes
-/// (collective): a checkpoint written on P processes restarts on any number.
-void save_matrix(core::BinaryWriter& out, const la::Matrix& M) {
-  const la::Matrix::Replicated r = M.replicated();
+/// The matrix in the whole model's numbering, whatever the number of
+/// processes (collective): a checkpoint written on P processes restarts on any
+/// number, on parts or pieces.
+void save_matrix(core::BinaryWriter& out, const la::Matrix& M, const std::optional<WholeNumbering>& whole) {
+  const la::Matrix::Replicated r = whole ? whole->whole(M) : M.replicated();
   out.put<int>(r.pattern.block_size);
   out.put_vector(r.pattern.row_offsets);
   out.put_vector(r.pattern.columns);
@@ -23,9 +31,9 @@ void save_matrix(core::BinaryWriter& out, const la::Matrix& M) {
 }
 
 /// Spread over the processes as the model's stiffness is
-/// (system::distribution_over_processes; collective).
-la::Matrix load_matrix(core::BinaryReader& in, const setup::Discretization& model) {
-  const Index rows = model.dofmap.num_dofs();
+/// (system::distribution_over_processes; collective); `rows`: the whole model's dofs.
+la::Matrix load_matrix(core::BinaryReader& in, const setup::Discretization& model, Index rows,
+                       const std::optional<WholeNumbering>& whole) {
   la::Matrix::Replicated r;
   assembly::SparsityPattern& p = r.pattern;
   p.block_size = in.get<int>();
@@ -43,7 +51,26 @@ la::Matrix load_matrix(core::BinaryReader& in, const setup::Discretization& mode
   r.values = in.get_vector<double>();
   if (r.values.size() != p.columns.size() * static_cast<std::size_t>(p.block_size * p.block_size))
     in.fail("matrix values that do not fit its pattern");
-  return la::Matrix::from_replicated(r, distribution_over_processes(model));
+  return la::Matrix::from_replicated(whole ? whole->piece_of(r) : r, distribution_over_processes(model));
+}
+
+/// On a piece of the model, its whole numbering (collective); else none.
+std::optional<WholeNumbering> whole_numbering(const setup::Discretization& model) {
+  if (!model.piece) return std::nullopt;
+  return WholeNumbering(model.piece->dofs, model.dim());
+}
+
+/// The dofs last downdated on every process, in the whole numbering: on a
+/// piece each process's (those of the bonds its piece holds) gathered.
+std::vector<Index> whole_dofs(const std::vector<Index>& dofs, const std::optional<WholeNumbering>& whole) {
+  if (!whole) return dofs;
+  const std::vector<Index> mine = whole->whole_dofs_of(dofs);
+  const std::vector<double> all = la::all_gather(std::vector<double>(mine.begin(), mine.end()));
+  std::vector<Index> out(all.size());
+  std::transform(all.begin(), all.end(), out.begin(), [](double v) { return static_cast<Index>(v); });
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
 }
 
 }  // namespace
@@ -55,12 +82,13 @@ void ConstrainedSystem::save(core::BinaryWriter& out) const {
     return;
   }
   out.tag("system");
-  save_matrix(out, K_);
-  save_matrix(out, A_);
-  out.put_vector(rhs_unit_.to_replicated());
-  out.put_vector(owned_.whole(initial_diagonal_));
+  const std::optional<WholeNumbering> whole = whole_numbering(model_);
+  save_matrix(out, K_, whole);
+  save_matrix(out, A_, whole);
+  out.put_vector(whole ? whole->whole(rhs_unit_.at_owned(owned_)) : rhs_unit_.to_replicated());
+  out.put_vector(whole ? whole->whole(initial_diagonal_) : owned_.whole(initial_diagonal_));
   out.put<std::uint64_t>(downdates_);
-  out.put_vector(last_downdated_);
+  out.put_vector(whole_dofs(last_downdated_, whole));
 }
 
 std::unique_ptr<ConstrainedSystem> ConstrainedSystem::restored(const setup::Discretization& model,
@@ -72,20 +100,28 @@ std::unique_ptr<ConstrainedSystem> ConstrainedSystem::restored(const setup::Disc
     return std::make_unique<ConstrainedSystem>(model, build_matrix_free_stiffness(model), std::move(bc), F);
   }
   in.expect("system");
-  const Index n = model.dofmap.num_dofs();
-  la::Matrix K = load_matrix(in, model);
+  const std::optional<WholeNumbering> whole = whole_numbering(model);
+  const Index n = whole ? whole->whole_dofs() : model.dofmap.num_dofs();
+  la::Matrix K = load_matrix(in, model, n, whole);
   auto system = std::make_unique<ConstrainedSystem>(model, std::move(K), std::move(bc), F);
-  system->A_ = load_matrix(in, model);
+  system->A_ = load_matrix(in, model, n, whole);
   system->A_.set_spd();
   const std::vector<double> rhs = in.get_vector<double>();
   const std::vector<double> reference = in.get_vector<double>();
   if (rhs.size() != static_cast<std::size_t>(n) || reference.size() != rhs.size())
     in.fail(fmt::format("vectors of {} and {} values where the model has {} dofs", rhs.size(),
                         reference.size(), n));
-  system->initial_diagonal_ = system->owned_.of(reference);
-  system->rhs_unit_.assign_replicated(rhs);
+  system->initial_diagonal_ = whole ? whole->owned_of(reference) : system->owned_.of(reference);
+  system->rhs_unit_.assign_replicated(whole ? whole->piece_of(rhs) : rhs);
   system->downdates_ = in.get<std::uint64_t>();
   system->last_downdated_ = in.get_vector<Index>();
+  for (Index d : system->last_downdated_)
+    if (d < 0 || d >= n) in.fail("a downdated dof out of range");
+  if (whole) {
+    // A piece keeps those it holds (ConstrainedSystem::without_stiffness reads the owned ones).
+    system->last_downdated_ = whole->piece_dofs_of(system->last_downdated_);
+    std::erase(system->last_downdated_, Index{-1});
+  }
   return system;
 }
 

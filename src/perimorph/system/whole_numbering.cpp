@@ -1,0 +1,122 @@
+#include "perimorph/system/whole_numbering.hpp"
+
+#include "perimorph/core/error.hpp"
+#include "perimorph/la/petsc_session.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace perimorph::system {
+
+WholeNumbering::WholeNumbering(const partition::PieceDofs& dofs, int block_size)
+    : block_size_(block_size), owned_(dofs.owned) {
+  std::vector<double> mine;
+  for (std::size_t n = 0; n < dofs.key.size(); ++n)
+    if (dofs.owned[n]) mine.push_back(static_cast<double>(dofs.key[n]));  // exact below 2^53
+  const std::vector<double> keys = la::all_gather(mine);                  // in distributed order
+  std::vector<Index> sorted(keys.size());
+  std::transform(keys.begin(), keys.end(), sorted.begin(), [](double k) { return static_cast<Index>(k); });
+  std::sort(sorted.begin(), sorted.end());
+  PERIMORPH_ASSERT(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end(),
+                   "a dof node owned twice");
+  auto rank_of = [&](Index key) {
+    const auto it = std::lower_bound(sorted.begin(), sorted.end(), key);
+    PERIMORPH_ASSERT(it != sorted.end() && *it == key, "a dof node no process owns");
+    return static_cast<Index>(it - sorted.begin());
+  };
+  of_distributed_.resize(keys.size());
+  for (std::size_t d = 0; d < keys.size(); ++d) of_distributed_[d] = rank_of(static_cast<Index>(keys[d]));
+  of_local_.resize(dofs.key.size());
+  local_of_whole_.assign(sorted.size(), -1);
+  for (std::size_t n = 0; n < dofs.key.size(); ++n) {
+    of_local_[n] = rank_of(dofs.key[n]);
+    local_of_whole_[static_cast<std::size_t>(of_local_[n])] = static_cast<Index>(n);
+  }
+}
+
+std::vector<double> WholeNumbering::whole(std::span<const double> owned) const {
+  // Every process's owned values, in its range: the distributed order.
+  const std::vector<double> all = la::all_gather(std::vector<double>(owned.begin(), owned.end()));
+  PERIMORPH_ASSERT(static_cast<Index>(all.size()) == whole_dofs(), "WholeNumbering: not the owned values");
+  std::vector<double> out(all.size());
+  const auto bs = static_cast<std::size_t>(block_size_);
+  for (std::size_t d = 0; d < of_distributed_.size(); ++d)
+    for (std::size_t k = 0; k < bs; ++k)
+      out[static_cast<std::size_t>(of_distributed_[d]) * bs + k] = all[d * bs + k];
+  return out;
+}
+
+std::vector<double> WholeNumbering::piece_of(std::span<const double> whole) const {
+  PERIMORPH_ASSERT(static_cast<Index>(whole.size()) == whole_dofs(), "WholeNumbering: not a whole vector");
+  const auto bs = static_cast<std::size_t>(block_size_);
+  std::vector<double> out(of_local_.size() * bs);
+  for (std::size_t n = 0; n < of_local_.size(); ++n)
+    for (std::size_t k = 0; k < bs; ++k)
+      out[n * bs + k] = whole[static_cast<std::size_t>(of_local_[n]) * bs + k];
+  return out;
+}
+
+std::vector<double> WholeNumbering::owned_of(std::span<const double> whole) const {
+  PERIMORPH_ASSERT(static_cast<Index>(whole.size()) == whole_dofs(), "WholeNumbering: not a whole vector");
+  const auto bs = static_cast<std::size_t>(block_size_);
+  std::vector<double> out;
+  for (std::size_t n = 0; n < of_local_.size(); ++n)
+    if (owned_[n])
+      for (std::size_t k = 0; k < bs; ++k)
+        out.push_back(whole[static_cast<std::size_t>(of_local_[n]) * bs + k]);
+  return out;
+}
+
+la::Matrix::Replicated WholeNumbering::whole(const la::Matrix& M) const {
+  return M.replicated(of_distributed_);
+}
+
+la::Matrix::Replicated WholeNumbering::piece_of(const la::Matrix::Replicated& whole) const {
+  const assembly::SparsityPattern& p = whole.pattern;
+  PERIMORPH_ASSERT(p.num_block_rows() == static_cast<Index>(local_of_whole_.size()),
+                   "WholeNumbering: not a matrix of the whole model");
+  const auto bb = static_cast<std::size_t>(p.block_size) * static_cast<std::size_t>(p.block_size);
+  la::Matrix::Replicated out;
+  out.pattern.block_size = p.block_size;
+  out.pattern.row_offsets.assign(1, 0);
+  for (std::size_t n = 0; n < of_local_.size(); ++n) {
+    if (owned_[n]) {
+      const Index w = of_local_[n];
+      const auto row = p.row(w);
+      const auto first = static_cast<std::size_t>(p.row_offsets[static_cast<std::size_t>(w)]);
+      for (Index c : row) {
+        const Index local = local_of_whole_[static_cast<std::size_t>(c)];
+        if (local < 0)
+          throw Error(
+              fmt::format("a checkpoint's matrix couples dof node {} to node {}, which this process's "
+                          "piece of the model does not hold",
+                          w, c));
+        out.pattern.columns.push_back(local);  // ascending: local order is the whole order
+      }
+      out.values.insert(out.values.end(), whole.values.begin() + static_cast<std::ptrdiff_t>(first * bb),
+                        whole.values.begin() + static_cast<std::ptrdiff_t>((first + row.size()) * bb));
+    }
+    out.pattern.row_offsets.push_back(static_cast<Index>(out.pattern.columns.size()));
+  }
+  return out;
+}
+
+std::vector<Index> WholeNumbering::whole_dofs_of(std::span<const Index> piece_dofs) const {
+  std::vector<Index> out(piece_dofs.size());
+  for (std::size_t k = 0; k < piece_dofs.size(); ++k)
+    out[k] = of_local_[static_cast<std::size_t>(piece_dofs[k] / block_size_)] * block_size_ +
+             piece_dofs[k] % block_size_;
+  return out;
+}
+
+std::vector<Index> WholeNumbering::piece_dofs_of(std::span<const Index> whole_dofs) const {
+  std::vector<Index> out(whole_dofs.size());
+  for (std::size_t k = 0; k < whole_dofs.size(); ++k) {
+    const Index n = local_of_whole_[static_cast<std::size_t>(whole_dofs[k] / block_size_)];
+    out[k] = n < 0 ? -1 : n * block_size_ + whole_dofs[k] % block_size_;
+  }
+  return out;
+}
+
+}  // namespace perimorph::system

@@ -1,0 +1,61 @@
+#pragma once
+// The whole model's numbering of a piece's dofs (issue 17): what a run on
+// pieces of the model (setup::cut_to_piece) writes in, and reads from, a
+// checkpoint, so that a checkpoint is the same whatever the number of
+// processes and whether they ran on parts or pieces (run/checkpoint.hpp).
+// The whole model numbers its dof nodes in key order (partition::PieceDofs),
+// so a node's whole number is the rank of its key among every process's keys:
+// each process sends the keys of the nodes it owns, in its distributed range's
+// order, and every process sorts them. O(whole model) on every process, once a
+// checkpoint: the cost of the checkpoint's own whole vectors.
+
+#include "perimorph/core/types.hpp"
+#include "perimorph/la/matrix.hpp"
+#include "perimorph/partition/piece_dofs.hpp"
+
+#include <span>
+#include <vector>
+
+namespace perimorph::system {
+
+class WholeNumbering {
+ public:
+  /// Collective over PETSC_COMM_WORLD: every process passes its piece's dof
+  /// nodes (`dofs`, whose owned nodes in local order are its distributed
+  /// range: system::piece_distribution) and `block_size` dofs a node.
+  WholeNumbering(const partition::PieceDofs& dofs, int block_size);
+
+  /// The whole model's dof count.
+  Index whole_dofs() const { return static_cast<Index>(of_distributed_.size()) * block_size_; }
+  /// The whole number of each dof node of the distributed numbering.
+  std::span<const Index> of_distributed() const { return of_distributed_; }
+
+  /// The whole-length vector of `owned` (the values at this process's owned
+  /// dofs, in their order: la::OwnedDofs), on every process (collective).
+  std::vector<double> whole(std::span<const double> owned) const;
+  /// The piece-length vector (the piece's assembly numbering) of a whole one.
+  std::vector<double> piece_of(std::span<const double> whole) const;
+  /// The owned entries (la::OwnedDofs order) of a whole vector.
+  std::vector<double> owned_of(std::span<const double> whole) const;
+
+  /// The matrix in the whole numbering, on every process (collective).
+  la::Matrix::Replicated whole(const la::Matrix& M) const;
+  /// The rows of the piece's owned dof nodes of a matrix in the whole
+  /// numbering, in the piece's numbering (the other rows empty), for
+  /// la::Matrix::from_replicated on the piece's distribution. Throws Error
+  /// (naming the whole row) where such a row reaches a node the piece lacks.
+  la::Matrix::Replicated piece_of(const la::Matrix::Replicated& whole) const;
+
+  /// The whole numbers of piece dofs, and back (−1 where the piece lacks it).
+  std::vector<Index> whole_dofs_of(std::span<const Index> piece_dofs) const;
+  std::vector<Index> piece_dofs_of(std::span<const Index> whole_dofs) const;
+
+ private:
+  int block_size_ = 1;
+  std::vector<Index> of_distributed_;  ///< whole node of each distributed node
+  std::vector<Index> of_local_;        ///< whole node of each local (piece) node
+  std::vector<Index> local_of_whole_;  ///< local node of each whole node, −1 where the piece lacks it
+  std::vector<char> owned_;            ///< per local node (PieceDofs::owned)
+};
+
+}  // namespace perimorph::system
