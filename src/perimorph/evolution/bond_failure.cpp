@@ -30,31 +30,46 @@ BondFailure::BondFailure(const setup::Discretization& disc)
 
 namespace {
 
-constexpr std::size_t kPacked = 10;  ///< doubles per bond in gather_bonds
+constexpr std::size_t kPacked = 16;  ///< doubles per bond in gather_bonds
 
-/// Every process's bonds (each in cell order e, from disjoint sets of cells e)
-/// on every process, in cell order: the one-process order.
-std::vector<assembly::StretchedBond> gather_bonds(const std::vector<assembly::StretchedBond>& mine) {
+/// Every process's bonds (each in cell order e, from disjoint sets of cells
+/// e) and their points on every process, in whole-mesh cell order: the
+/// one-process order. Sent in whole-mesh cell numbers, given back in the
+/// model's (on a piece, e = f = -1 for a bond whose cells it does not both hold).
+void gather_bonds(const setup::Discretization& disc, std::vector<assembly::StretchedBond>& bonds,
+                  std::vector<BondPoints>& points) {
   std::vector<double> packed;
-  packed.reserve(mine.size() * kPacked);
-  for (const auto& b : mine)
+  packed.reserve(bonds.size() * kPacked);
+  for (std::size_t k = 0; k < bonds.size(); ++k) {
+    const auto& b = bonds[k];
+    const auto& p = points[k];
     packed.insert(packed.end(),
-                  {static_cast<double>(b.id.e), static_cast<double>(b.id.f), static_cast<double>(b.id.g),
-                   static_cast<double>(b.id.h), b.stretch, b.energy, b.k, b.xi.x(), b.xi.y(), b.xi.z()});
+                  {static_cast<double>(setup::global_cell(disc, b.id.e)),
+                   static_cast<double>(setup::global_cell(disc, b.id.f)), static_cast<double>(b.id.g),
+                   static_cast<double>(b.id.h), b.stretch, b.energy, b.k, b.xi.x(), b.xi.y(), b.xi.z(),
+                   p.g.x(), p.g.y(), p.g.z(), p.h.x(), p.h.y(), p.h.z()});
+  }
   const std::vector<double> all = la::all_gather(packed);
-  std::vector<assembly::StretchedBond> out(all.size() / kPacked);
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    const double* v = all.data() + i * kPacked;
-    auto& b = out[i];
-    b.id = {static_cast<Index>(v[0]), static_cast<Index>(v[1]), static_cast<int>(v[2]),
-            static_cast<int>(v[3])};
+  const std::size_t n = all.size() / kPacked;
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return all[a * kPacked] < all[b * kPacked]; });
+  bonds.assign(n, {});
+  points.assign(n, {});
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* v = all.data() + order[i] * kPacked;
+    auto& b = bonds[i];
+    Index e = setup::local_cell(disc, static_cast<Index>(v[0])),
+          f = setup::local_cell(disc, static_cast<Index>(v[1]));
+    if (e < 0 || f < 0) e = f = -1;
+    b.id = {e, f, static_cast<int>(v[2]), static_cast<int>(v[3])};
     b.stretch = v[4];
     b.energy = v[5];
     b.k = v[6];
     b.xi = Vec3(v[7], v[8], v[9]);
+    points[i] = {Vec3(v[10], v[11], v[12]), Vec3(v[13], v[14], v[15])};
   }
-  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.id.e < b.id.e; });
-  return out;
 }
 
 }  // namespace
@@ -64,7 +79,7 @@ assembly::NonlocalSpace BondFailure::space(const RunState& state) const {
 }
 
 Proposal BondFailure::inspect(const RunState& state, const system::ConstrainedSystem& /*system*/) {
-  proposed_ = select(state);
+  proposed_ = select(state, &proposed_points_);
   return {proposed_.size()};
 }
 
@@ -73,7 +88,8 @@ Effect BondFailure::apply(RunState& state, system::ConstrainedSystem& system) {
   return Effect::downdate;
 }
 
-std::vector<assembly::StretchedBond> BondFailure::select(const RunState& state) const {
+std::vector<assembly::StretchedBond> BondFailure::select(const RunState& state,
+                                                         std::vector<BondPoints>* points) const {
   std::vector<assembly::StretchedBond> over = assembly::bonds_over(space(state), state.u, s_crit_, decides_);
   const auto& spec = disc_->config.fracture;
   const setup::DamageModel* damage = disc_->damage ? &*disc_->damage : nullptr;
@@ -86,13 +102,30 @@ std::vector<assembly::StretchedBond> BondFailure::select(const RunState& state) 
     return !no_fail_.empty() &&
            (no_fail_[static_cast<std::size_t>(b.id.e)] || no_fail_[static_cast<std::size_t>(b.id.f)]);
   });
-  if (!decides_.empty()) over = gather_bonds(over);
+  std::vector<BondPoints> where;
+  if (points != nullptr || !decides_.empty()) {
+    const auto& pts = disc_->nonlocal->points;
+    where.reserve(over.size());
+    for (const auto& b : over)
+      where.push_back({bonds::point_position(disc_->mesh, pts, b.id.e, b.id.g),
+                       bonds::point_position(disc_->mesh, pts, b.id.f, b.id.h)});
+  }
+  if (!decides_.empty()) gather_bonds(*disc_, over, where);
   if (spec.rule == casefile::BreakRule::fraction && !over.empty()) {
     double smax = 0.0;
     for (const auto& b : over) smax = std::max(smax, b.stretch);
     const double bar = spec.fraction * smax;
-    std::erase_if(over, [&](const assembly::StretchedBond& b) { return b.stretch < bar; });
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < over.size(); ++k) {
+      if (over[k].stretch < bar) continue;
+      over[kept] = over[k];
+      if (!where.empty()) where[kept] = where[k];
+      ++kept;
+    }
+    over.resize(kept);
+    if (!where.empty()) where.resize(kept);
   }
+  if (points != nullptr) *points = std::move(where);
   return over;
 }
 
@@ -122,9 +155,14 @@ FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bon
   BondShape bs;
   FailureEnergy energy;
   for (const auto& b : bonds) {
+    const double critical = assembly::energy_at_stretch(b, s_crit_);
+    if (b.id.e < 0) {  // on a piece, a bond it does not hold: in the ledger only
+      energy.dissipated += critical;
+      energy.overshoot += b.energy - critical;
+      continue;
+    }
     if (!state.failed.add(b.id)) continue;
     state.failed_in_order.push_back(b.id);
-    const double critical = assembly::energy_at_stretch(b, s_crit_);
     energy.dissipated += critical;
     energy.overshoot += b.energy - critical;
     state.cell_dissipated[b.id.e] += 0.5 * critical;
@@ -173,10 +211,12 @@ std::vector<assembly::InterfaceBonds> BondFailure::broken_interfaces(const RunSt
   if (decides_.empty()) return mine;
   // Each process looked at the faces of its cells e: every process gets them
   // all, in cell order (each process's in cell order, from disjoint cells).
+  // In whole-mesh numbers (a piece's box cells are its cells' whole numbers).
   std::vector<double> packed;
   for (const auto& i : mine)
     packed.insert(packed.end(),
-                  {static_cast<double>(i.e), static_cast<double>(i.f), static_cast<double>(i.axis)});
+                  {static_cast<double>(setup::global_cell(*disc_, i.e)),
+                   static_cast<double>(setup::global_cell(*disc_, i.f)), static_cast<double>(i.axis)});
   const std::vector<double> all = la::all_gather(packed);
   std::vector<assembly::InterfaceBonds> out(all.size() / 3);
   for (std::size_t k = 0; k < out.size(); ++k) {
@@ -207,7 +247,8 @@ CrackArea BondFailure::crack_area(const RunState& state) const {
   std::array<std::set<std::array<Index, 2>>, 3> columns;
   for (const auto& i : broken_interfaces(state)) {
     out.total += face_area(i.axis);
-    const auto ijk = layout.cell_ijk(i.e);
+    const auto ijk =
+        decides_.empty() ? layout.cell_ijk(i.e) : layout.box_cell_ijk(i.e);  // whole-mesh numbers
     std::array<Index, 2> key{};
     for (int d = 0, k = 0; d < 3; ++d)
       if (d != i.axis) key[static_cast<std::size_t>(k++)] = ijk[static_cast<std::size_t>(d)];

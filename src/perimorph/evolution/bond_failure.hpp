@@ -42,6 +42,11 @@ struct CrackArea {
   double total = 0.0, projected = 0.0;
 };
 
+/// Where a bond's two points are (bonds::point_position of g in e, h in f).
+struct BondPoints {
+  Vec3 g = Vec3::Zero(), h = Vec3::Zero();
+};
+
 /// Bond failure as an evolution component: inspect selects the bonds over
 /// the criterion at the state's displacement, apply breaks them by downdating
 /// the system (Effect::downdate). Dofs left with no stiffness and parts cut
@@ -62,8 +67,11 @@ class BondFailure final : public Component {
   /// Nothing is kept between increments but the discretization.
   void restore(const setup::Discretization& disc, core::BinaryReader& /*in*/) override { disc_ = &disc; }
 
-  /// The bonds proposed by the last inspect (what the last apply broke).
+  /// The bonds proposed by the last inspect (what the last apply broke), and
+  /// where their points are (on a piece of the model, the points of bonds it
+  /// does not hold too).
   const std::vector<assembly::StretchedBond>& proposed() const { return proposed_; }
+  const std::vector<BondPoints>& proposed_points() const { return proposed_points_; }
   /// Their energy, from the last apply.
   const FailureEnergy& applied_energy() const { return applied_; }
 
@@ -78,11 +86,19 @@ class BondFailure final : public Component {
   /// and with [material.damage] bonds with an end whose damage is below d_c
   /// (THEORY §6), are never selected. Grouped by cell pair. On several
   /// processes each decides the bonds of its cells and the decisions are
-  /// gathered: every process gets the same list, in the one-process order.
-  std::vector<assembly::StretchedBond> select(const RunState& state) const;
+  /// gathered (in whole-mesh cell numbers, with their points' positions):
+  /// every process gets the same list, in the one-process order. On a piece
+  /// of the model (setup::cut_to_piece) the cells are given back in local
+  /// numbers, and a bond whose two cells the piece does not both hold has
+  /// e = f = −1 (it touches no row the process owns: a piece holds every
+  /// cell bonded to a cell with a node it owns). `points`, if given, gets
+  /// where each bond's points are.
+  std::vector<assembly::StretchedBond> select(const RunState& state,
+                                              std::vector<BondPoints>* points = nullptr) const;
 
   /// Breaks `bonds` (from select at the state's displacement): records them in
-  /// the state (failed bonds, D and overshoot in the ledger, D per cell) and
+  /// the state (failed bonds, D and overshoot in the ledger, D per cell; a
+  /// bond a piece does not hold, e = −1, in the ledger only) and
   /// downdates `system` by their blocks (ConstrainedSystem::downdate): K −=
   /// the blocks; A −= them on free rows and columns; the right-hand side takes
   /// their prescribed columns. Finalizes K and A. Returns their energy, at
@@ -117,7 +133,8 @@ class BondFailure final : public Component {
 
  private:
   /// The interfaces all of whose bonds have failed, in cell order, on every
-  /// process (each process finds those of its cells e; collective).
+  /// process (each process finds those of its cells e; collective); on
+  /// several processes in whole-mesh cell numbers.
   std::vector<assembly::InterfaceBonds> broken_interfaces(const RunState& state) const;
   const setup::Discretization* disc_;  ///< non-owning: the run's current discretization
   double s_crit_ = 0.0;
@@ -127,6 +144,7 @@ class BondFailure final : public Component {
   /// as the assembly's). Empty on one process.
   std::vector<char> decides_;
   std::vector<assembly::StretchedBond> proposed_;
+  std::vector<BondPoints> proposed_points_;
   FailureEnergy applied_;
 };
 

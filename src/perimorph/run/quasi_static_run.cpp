@@ -208,8 +208,8 @@ bool QuasiStaticRun::evolve() {
   if (!changed) return false;
   system_->operator_changed();
   if (bonds_failed_in_pass_)
-    output_->add_failed_bonds(*disc_, state_.increment, rec_.break_iterations, fracture_->proposed(),
-                              fracture_->s_crit());
+    output_->add_failed_bonds(state_.increment, rec_.break_iterations, fracture_->proposed(),
+                              fracture_->proposed_points(), fracture_->s_crit());
   return true;
 }
 

@@ -241,14 +241,14 @@ void RunOutput::add_failure_row(int increment, int iteration, std::size_t bonds,
   });
 }
 
-void RunOutput::add_failed_bonds(const setup::Discretization& model, int increment, int iteration,
-                                 std::span<const assembly::StretchedBond> bonds, double s_crit) {
+void RunOutput::add_failed_bonds(int increment, int iteration, std::span<const assembly::StretchedBond> bonds,
+                                 std::span<const evolution::BondPoints> points, double s_crit) {
+  PERIMORPH_ASSERT(points.size() == bonds.size(), "a position for each failed bond");
   la::on_process_zero([&] {
     if (!failed_bonds_csv_) return;
-    const auto& pts = model.nonlocal->points;
-    for (const auto& b : bonds) {
-      const Vec3 xg = bonds::point_position(model.mesh, pts, b.id.e, b.id.g);
-      const Vec3 xh = bonds::point_position(model.mesh, pts, b.id.f, b.id.h);
+    for (std::size_t k = 0; k < bonds.size(); ++k) {
+      const auto& b = bonds[k];
+      const Vec3 &xg = points[k].g, &xh = points[k].h;
       const double critical = assembly::energy_at_stretch(b, s_crit);
       failed_bonds_csv_->add_row({static_cast<double>(increment), static_cast<double>(iteration), xg.x(),
                                   xg.y(), xg.z(), xh.x(), xh.y(), xh.z(), b.stretch, critical,

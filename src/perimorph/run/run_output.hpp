@@ -104,9 +104,10 @@ class RunOutput {
                        double seconds);
   /// With [output] failed_bonds: one row per bond of `bonds` in
   /// BASENAME_failed_bonds.csv (its points, stretch, energy at s_crit and
-  /// beyond; docs/output.md). Bonds already failed are the caller's to skip.
-  void add_failed_bonds(const setup::Discretization& model, int increment, int iteration,
-                        std::span<const assembly::StretchedBond> bonds, double s_crit);
+  /// beyond; docs/output.md), `points` where each bond's are
+  /// (BondFailure::proposed_points). Bonds already failed are the caller's to skip.
+  void add_failed_bonds(int increment, int iteration, std::span<const assembly::StretchedBond> bonds,
+                        std::span<const evolution::BondPoints> points, double s_crit);
 
   /// Adaptive runs: one row per ball added to α in BASENAME_alpha.csv.
   void add_alpha_balls(std::span<const evolution::AlphaBall> balls);

@@ -117,6 +117,19 @@ Discretization cut_to_piece(const Discretization& part, std::span<const int> own
   return disc;
 }
 
+Index PieceNumbers::local_cell(Index c) const {
+  const auto it = std::lower_bound(global_cell.begin(), global_cell.end(), c);
+  return it != global_cell.end() && *it == c ? static_cast<Index>(it - global_cell.begin()) : -1;
+}
+
+Index global_cell(const Discretization& disc, Index c) {
+  return disc.piece ? disc.piece->global_cell[static_cast<std::size_t>(c)] : c;
+}
+
+Index local_cell(const Discretization& disc, Index global) {
+  return disc.piece ? disc.piece->local_cell(global) : global;
+}
+
 std::vector<char> cells_of_process(const Discretization& disc, int processes, int process) {
   if (processes == 1 || !disc.piece) return partition::cells_of_part(disc.mesh, processes, process);
   std::vector<char> mine;

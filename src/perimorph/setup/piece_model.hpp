@@ -28,7 +28,14 @@ struct PieceNumbers {
   int part = 0;
   /// What the piece decides about its dof nodes (owners and keys).
   partition::PieceDofs dofs;
+  /// The local number of global cell c, or -1 if the piece lacks it (a search).
+  Index local_cell(Index c) const;
 };
+
+/// The whole-mesh number of cell c of `disc` (c itself but on a piece), and back
+/// (-1 where a piece lacks it).
+Index global_cell(const Discretization& disc, Index c);
+Index local_cell(const Discretization& disc, Index global);
 
 /// The piece of `part` (built for part `part_number`, or the whole model)
 /// that its process reads, in local numbers: its mesh (a mesh::PartMesh's,

@@ -1,0 +1,163 @@
+// Bond failure on a process's piece of the model (issue 17, step 5) under
+// mpiexec -n 1, 2 and 3: the bonds over the criterion at a displacement,
+// each decided by the process of its cell on its piece and gathered in
+// whole-mesh cell numbers, are those decided on the processes' parts of the
+// whole model (the same bonds, figures and points, in the same order); broken
+// on the pieces they downdate K, A and the right-hand side to the parts'
+// rows bit for bit, with the same energy, crack area and per-cell fields.
+
+#include "perimorph/evolution/bond_failure.hpp"
+#include "perimorph/la/petsc_session.hpp"
+#include "perimorph/partition/partition.hpp"
+#include "perimorph/run/static_run.hpp"
+#include "perimorph/setup/boundary_conditions.hpp"
+#include "perimorph/setup/critical_stretch.hpp"
+#include "perimorph/setup/piece_model.hpp"
+#include "perimorph/system/constrained_system.hpp"
+#include "perimorph/system/stiffness.hpp"
+#include "support/model_cases.hpp"
+#include "support/owned_rows.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+namespace perimorph {
+namespace {
+
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof(double)) == 0;
+}
+bool same_bits(const Vec3& a, const Vec3& b) {
+  return same_bits(a.x(), b.x()) && same_bits(a.y(), b.y()) && same_bits(a.z(), b.z());
+}
+
+/// Cases with [fracture]: the fracture plate (CG, structured, a pre-crack
+/// cut), the mixed CG/DG plate and the 3D ball of DG degree 0.
+std::vector<testing::NamedCase> fracture_cases() {
+  std::vector<testing::NamedCase> out;
+  out.push_back({"fracture plate", casefile::parse_case_file(std::string(PERIMORPH_SOURCE_DIR) +
+                                                             "/examples/fracture_plate_2d/case.toml")});
+  for (auto& c : testing::model_part_cases())
+    if (c.name.rfind("mixed", 0) == 0 || c.name.rfind("3D ball", 0) == 0) out.push_back(std::move(c));
+  for (auto& c : out) {
+    c.config.fracture.enabled = true;
+    if (c.config.fracture.s_crit == 0.0 && c.config.fracture.G_c == 0.0) c.config.fracture.s_crit = 0.01;
+    c.config.adaptivity.enabled = false;
+  }
+  return out;
+}
+
+/// u_x = a x |x| at every dof node, a such that the stretch reaches 3 s_crit
+/// at the far end of the body: the bonds of its far two thirds fail.
+evolution::RunState stretched(const setup::Discretization& model, double s_crit, double length) {
+  evolution::RunState state(model);
+  const double a = 1.5 * s_crit / length;
+  const int dim = model.dim();
+  for (Index n = 0; n < model.dofmap.num_nodes(); ++n) {
+    const Vec3 x = model.dofmap.node_coordinate(model.mesh, n);
+    state.u[static_cast<std::size_t>(n * dim)] = a * x.x() * std::abs(x.x());
+  }
+  return state;
+}
+
+TEST(PieceFracture, DecidesAndBreaksTheBondsOfTheParts) {
+  const int processes = la::world_size(), rank = la::world_rank();
+  for (const auto& [name, config] : fracture_cases()) {
+    SCOPED_TRACE(name);
+    const setup::Discretization part = run::process_part(config);
+    const auto owner = partition::coordinate_bisection(part.mesh, processes).owner;
+    const setup::Discretization piece = setup::cut_to_piece(part, owner, rank, la::any_over_processes);
+    double length = 0.0;
+    for (Index n = 0; n < part.mesh.num_nodes(); ++n)
+      length = std::max(length, std::abs(part.mesh.node(n).x()));
+    const double s_crit = setup::critical_stretch(part);
+    evolution::RunState on_part = stretched(part, s_crit, length),
+                        on_piece = stretched(piece, s_crit, length);
+
+    const evolution::BondFailure part_failure(part), piece_failure(piece);
+    std::vector<evolution::BondPoints> part_points, piece_points;
+    const auto expected = part_failure.select(on_part, &part_points);
+    const auto got = piece_failure.select(on_piece, &piece_points);
+    ASSERT_GT(expected.size(), 20U);
+    ASSERT_EQ(got.size(), expected.size());
+    ASSERT_EQ(piece_points.size(), got.size());
+    ASSERT_EQ(part_points.size(), expected.size());
+    std::size_t held = 0;
+    for (std::size_t k = 0; k < got.size(); ++k) {
+      const auto &a = got[k], &b = expected[k];
+      ASSERT_EQ(a.id.g, b.id.g) << k;
+      ASSERT_EQ(a.id.h, b.id.h) << k;
+      if (a.id.e >= 0) {
+        ++held;
+        ASSERT_EQ(setup::global_cell(piece, a.id.e), b.id.e) << k;
+        ASSERT_EQ(setup::global_cell(piece, a.id.f), b.id.f) << k;
+      } else {
+        ASSERT_EQ(a.id.f, -1);
+        EXPECT_TRUE(setup::local_cell(piece, b.id.e) < 0 || setup::local_cell(piece, b.id.f) < 0)
+            << "a bond the piece holds given as one it does not";
+      }
+      ASSERT_TRUE(same_bits(a.stretch, b.stretch) && same_bits(a.energy, b.energy) && same_bits(a.k, b.k) &&
+                  same_bits(a.xi, b.xi))
+          << k;
+      ASSERT_TRUE(same_bits(piece_points[k].g, part_points[k].g) &&
+                  same_bits(piece_points[k].h, part_points[k].h))
+          << k;
+    }
+    EXPECT_GT(held, 0U);
+    if (processes == 1) {
+      EXPECT_EQ(held, got.size());
+      continue;  // one process runs on the whole model, not on a piece
+    }
+
+    // Broken on the parts' systems and on the pieces'.
+    system::ConstrainedSystem part_system(part, system::assemble_stiffness_over_processes(part).K,
+                                          setup::build_dirichlet(part), setup::build_external_force(part));
+    system::ConstrainedSystem piece_system(piece, system::assemble_stiffness_over_processes(piece).K,
+                                           setup::build_dirichlet(piece), setup::build_external_force(piece));
+    const evolution::FailureEnergy e_part = part_failure.apply(expected, on_part, part_system);
+    const evolution::FailureEnergy e_piece = piece_failure.apply(got, on_piece, piece_system);
+    EXPECT_TRUE(same_bits(e_piece.dissipated, e_part.dissipated) &&
+                same_bits(e_piece.overshoot, e_part.overshoot));
+    EXPECT_TRUE(same_bits(on_piece.energy.dissipated, on_part.energy.dissipated));
+    EXPECT_EQ(on_piece.failed_in_order.size(), held);
+    const testing::Rows K = testing::owned_rows(part_system.K()), A = testing::owned_rows(part_system.A());
+    EXPECT_TRUE(testing::owned_rows(piece_system.K()) == K) << "K, process " << rank;
+    EXPECT_TRUE(testing::owned_rows(piece_system.A()) == A) << "A, process " << rank;
+    const auto rhs_part = part_system.rhs_unit().at_owned(part_system.owned_dofs());
+    const auto rhs_piece = piece_system.rhs_unit().at_owned(piece_system.owned_dofs());
+    ASSERT_EQ(rhs_piece.size(), rhs_part.size());
+    for (std::size_t k = 0; k < rhs_part.size(); ++k) EXPECT_TRUE(same_bits(rhs_piece[k], rhs_part[k])) << k;
+    // The same bonds are broken: none is left over the criterion on either.
+    EXPECT_TRUE(part_failure.select(on_part).empty());
+    EXPECT_TRUE(piece_failure.select(on_piece).empty());
+
+    // Crack area (collective) and the fields of the cells this process writes.
+    const evolution::CrackArea area_part = part_failure.crack_area(on_part),
+                               area_piece = piece_failure.crack_area(on_piece);
+    EXPECT_TRUE(same_bits(area_piece.total, area_part.total) ||
+                (std::isnan(area_part.total) && std::isnan(area_piece.total)));
+    EXPECT_TRUE(same_bits(area_piece.projected, area_part.projected) ||
+                (std::isnan(area_part.projected) && std::isnan(area_piece.projected)));
+    std::vector<Index> part_cells, piece_cells;
+    const auto mine = setup::cells_of_process(part, processes, rank);
+    for (Index c = 0; c < part.mesh.num_cells(); ++c)
+      if (mine[static_cast<std::size_t>(c)]) part_cells.push_back(c);
+    const auto mine_on_piece = setup::cells_of_process(piece, processes, rank);
+    for (Index c = 0; c < piece.mesh.num_cells(); ++c)
+      if (mine_on_piece[static_cast<std::size_t>(c)]) piece_cells.push_back(c);
+    ASSERT_EQ(piece_cells.size(), part_cells.size());
+    const auto fields_part = part_failure.fields(on_part, part_cells);
+    const auto fields_piece = piece_failure.fields(on_piece, piece_cells);
+    for (std::size_t k = 0; k < part_cells.size(); ++k) {
+      ASSERT_EQ(setup::global_cell(piece, piece_cells[k]), part_cells[k]);
+      EXPECT_TRUE(same_bits(fields_piece.damage[k], fields_part.damage[k])) << "cell " << part_cells[k];
+      EXPECT_TRUE(same_bits(fields_piece.dissipated[k], fields_part.dissipated[k]))
+          << "cell " << part_cells[k];
+    }
+  }
+}
+
+}  // namespace
+}  // namespace perimorph
