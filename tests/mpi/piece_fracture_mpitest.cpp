@@ -7,6 +7,7 @@
 // rows bit for bit, with the same energy, crack area and per-cell fields.
 
 #include "perimorph/evolution/bond_failure.hpp"
+#include "perimorph/evolution/floating_parts.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/partition/partition.hpp"
 #include "perimorph/run/static_run.hpp"
@@ -15,6 +16,8 @@
 #include "perimorph/setup/piece_model.hpp"
 #include "perimorph/system/constrained_system.hpp"
 #include "perimorph/system/stiffness.hpp"
+#include "perimorph/system/whole_numbering.hpp"
+#include "support/floating_plate.hpp"
 #include "support/model_cases.hpp"
 #include "support/owned_rows.hpp"
 
@@ -156,6 +159,103 @@ TEST(PieceFracture, DecidesAndBreaksTheBondsOfTheParts) {
       EXPECT_TRUE(same_bits(fields_piece.dissipated[k], fields_part.dissipated[k]))
           << "cell " << part_cells[k];
     }
+  }
+}
+
+// What bond failure cuts loose, found on the pieces in the dofs' and nodes'
+// names (setup::dof_name: their keys) as on the parts, on the plate of
+// floating_parts_test: cut through at x = 2 (its right half held along x
+// only: a floating part), and with its last column stretched (its nodes left
+// with no stiffness along x). The dofs left without stiffness, the floating
+// parts and their pins are the parts', in the same order.
+TEST(PieceFracture, FindsWhatIsCutLooseAsTheParts) {
+  const int processes = la::world_size(), rank = la::world_rank();
+  if (processes == 1) GTEST_SKIP() << "one process runs on the whole model";
+  auto config = testing::floating_plate(false);
+  config.fracture.s_crit = 1e-12;
+  const setup::Discretization part = run::process_part(config);
+  const auto owner = partition::coordinate_bisection(part.mesh, processes).owner;
+  const setup::Discretization piece = setup::cut_to_piece(part, owner, rank, la::any_over_processes);
+  const system::WholeNumbering whole(piece.piece->dofs, piece.dim());
+  // A name's whole dof, where this piece holds it (-1 elsewhere).
+  auto whole_dof = [&](Index name) {
+    const Index dof = setup::dof_of_name(piece, name);
+    return dof < 0 ? Index{-1} : whole.whole_dofs_of(std::vector<Index>{dof})[0];
+  };
+  auto expect_same_names = [&](const std::vector<Index>& names, const std::vector<Index>& dofs,
+                               const char* what) {
+    ASSERT_EQ(names.size(), dofs.size()) << what;
+    ASSERT_TRUE(std::is_sorted(names.begin(), names.end())) << what;
+    std::size_t held = 0;
+    for (std::size_t k = 0; k < names.size(); ++k)
+      if (const Index d = whole_dof(names[k]); d >= 0) {
+        EXPECT_EQ(d, dofs[k]) << what << " " << k;
+        ++held;
+      }
+    EXPECT_EQ(la::sum_over_processes({static_cast<double>(held)})[0] > 0.0, !names.empty())
+        << what << ": none held anywhere";
+  };
+
+  for (const bool cut_through : {true, false}) {
+    SCOPED_TRACE(cut_through ? "cut through at x = 2" : "last column stretched");
+    auto stretched = [&](const setup::Discretization& model) {
+      evolution::RunState state(model);
+      if (cut_through)
+        state.u = testing::jump_at_middle(model);
+      else
+        testing::stretch_last_column(model, state.u);
+      return state;
+    };
+    evolution::RunState on_part = stretched(part), on_piece = stretched(piece);
+    system::ConstrainedSystem part_system(part, system::assemble_stiffness_over_processes(part).K,
+                                          setup::build_dirichlet(part), setup::build_external_force(part));
+    system::ConstrainedSystem piece_system(piece, system::assemble_stiffness_over_processes(piece).K,
+                                           setup::build_dirichlet(piece), setup::build_external_force(piece));
+    const evolution::BondFailure part_failure(part), piece_failure(piece);
+    part_failure.apply(part_failure.select(on_part), on_part, part_system);
+    piece_failure.apply(piece_failure.select(on_piece), on_piece, piece_system);
+
+    const std::vector<Index> part_detached = part_system.without_stiffness(part_system.last_downdated());
+    const std::vector<Index> piece_detached = piece_system.without_stiffness(piece_system.last_downdated());
+    if (!cut_through) {
+      ASSERT_FALSE(part_detached.empty());
+    }
+    expect_same_names(piece_detached, part_detached, "dofs without stiffness");
+
+    // Held: the prescribed dofs and those without stiffness (a piece's
+    // prescribed dofs named and gathered).
+    std::vector<Index> part_held(part_system.bc().dofs.begin(), part_system.bc().dofs.end());
+    part_held.insert(part_held.end(), part_detached.begin(), part_detached.end());
+    std::sort(part_held.begin(), part_held.end());
+    std::vector<double> mine;
+    for (Index d : piece_system.bc().dofs) mine.push_back(static_cast<double>(setup::dof_name(piece, d)));
+    std::vector<Index> piece_held;
+    for (double v : la::all_gather(mine)) piece_held.push_back(static_cast<Index>(v));
+    piece_held.insert(piece_held.end(), piece_detached.begin(), piece_detached.end());
+    std::sort(piece_held.begin(), piece_held.end());
+    piece_held.erase(std::unique(piece_held.begin(), piece_held.end()), piece_held.end());
+
+    const la::DofValuesAt part_force = [&](std::span<const Index> dofs) {
+      return part_system.applied_force_at(dofs);
+    };
+    const la::DofValuesAt piece_force = [&](std::span<const Index> names) {
+      std::vector<Index> dofs(names.size());
+      for (std::size_t k = 0; k < names.size(); ++k) dofs[k] = setup::dof_of_name(piece, names[k]);
+      return piece_system.applied_force_at(dofs);
+    };
+    const auto part_links = evolution::stiffness_links_over_processes(part, part_failure.space(on_part));
+    std::vector<Vec3> positions;
+    const auto piece_links =
+        evolution::stiffness_links_over_processes(piece, piece_failure.space(on_piece), &positions);
+    const evolution::FloatingParts expected =
+        evolution::find_floating_parts(part, part_links, part_held, part_force);
+    const evolution::FloatingParts got =
+        evolution::find_floating_parts(piece, piece_links, piece_held, piece_force, positions);
+    if (cut_through) {
+      ASSERT_GE(expected.parts, 1);
+    }
+    EXPECT_EQ(got.parts, expected.parts);
+    expect_same_names(got.pins, expected.pins, "pins");
   }
 }
 

@@ -106,34 +106,72 @@ std::vector<Index> stiffness_links(const setup::Discretization& model, const ass
 }
 
 std::vector<Index> stiffness_links_over_processes(const setup::Discretization& disc,
-                                                  const assembly::NonlocalSpace& space) {
+                                                  const assembly::NonlocalSpace& space,
+                                                  std::vector<Vec3>* positions) {
   if (la::world_size() == 1) return stiffness_links(disc, space);
   const std::vector<Index> mine =
       stiffness_links(disc, space, setup::cells_of_process(disc, la::world_size(), la::world_rank()));
-  const std::vector<double> all = la::all_gather(std::vector<double>(mine.begin(), mine.end()));
-  std::vector<Index> links(all.size());
-  std::transform(all.begin(), all.end(), links.begin(), [](double v) { return static_cast<Index>(v); });
+  if (!disc.piece) {
+    const std::vector<double> all = la::all_gather(std::vector<double>(mine.begin(), mine.end()));
+    std::vector<Index> links(all.size());
+    std::transform(all.begin(), all.end(), links.begin(), [](double v) { return static_cast<Index>(v); });
+    return links;
+  }
+  // On a piece: in the nodes' names (their keys), with the first node's position.
+  PERIMORPH_ASSERT(positions != nullptr, "a piece's links need their positions");
+  const auto& keys = disc.piece->dofs.key;
+  std::vector<double> packed;
+  packed.reserve(mine.size() / 2 * 5);
+  for (std::size_t k = 0; k < mine.size(); k += 2) {
+    const Vec3 x = disc.dofmap.node_coordinate(disc.mesh, mine[k]);
+    packed.insert(packed.end(),
+                  {static_cast<double>(keys[static_cast<std::size_t>(mine[k])]),
+                   static_cast<double>(keys[static_cast<std::size_t>(mine[k + 1])]), x.x(), x.y(), x.z()});
+  }
+  const std::vector<double> all = la::all_gather(packed);
+  std::vector<Index> links;
+  links.reserve(all.size() / 5 * 2);
+  positions->clear();
+  for (std::size_t k = 0; k < all.size(); k += 5) {
+    links.insert(links.end(), {static_cast<Index>(all[k]), static_cast<Index>(all[k + 1])});
+    positions->emplace_back(all[k + 2], all[k + 3], all[k + 4]);
+  }
   return links;
 }
 
 FloatingParts find_floating_parts(const setup::Discretization& model, std::span<const Index> links,
-                                  std::span<const Index> held, const la::DofValuesAt& force) {
-  const auto& dm = model.dofmap;
+                                  std::span<const Index> held, const la::DofValuesAt& force,
+                                  std::span<const Vec3> positions) {
   const int dim = model.dim();
   const int nr = rigid_modes(dim);
-  const Index nn = dm.num_nodes();
-  UnionFind parts(static_cast<std::size_t>(nn));
-  std::vector<char> stiff(static_cast<std::size_t>(nn), 0);
   PERIMORPH_ASSERT(links.size() % 2 == 0, "stiffness links come in pairs");
+  PERIMORPH_ASSERT(positions.empty() || positions.size() * 2 == links.size(), "a position for each link");
+  // The nodes the links reach, numbered 0, 1, … in the order of their names
+  // (every node reached is the first of a link: stiffness_links).
+  std::vector<Index> name;
+  name.reserve(links.size() / 2);
+  for (std::size_t k = 0; k < links.size(); k += 2) name.push_back(links[k]);
+  std::sort(name.begin(), name.end());
+  name.erase(std::unique(name.begin(), name.end()), name.end());
+  const auto nn = static_cast<Index>(name.size());
+  auto node_of = [&](Index n) {
+    const auto it = std::lower_bound(name.begin(), name.end(), n);
+    PERIMORPH_ASSERT(it != name.end() && *it == n, "a link to a node no link reaches");
+    return static_cast<Index>(it - name.begin());
+  };
+  std::vector<Vec3> at(static_cast<std::size_t>(nn));
+  UnionFind parts(static_cast<std::size_t>(nn));
   for (std::size_t k = 0; k < links.size(); k += 2) {
-    parts.join(links[k], links[k + 1]);
-    stiff[static_cast<std::size_t>(links[k])] = 1;
+    const Index a = node_of(links[k]);
+    parts.join(a, node_of(links[k + 1]));
+    at[static_cast<std::size_t>(a)] =
+        positions.empty() ? model.dofmap.node_coordinate(model.mesh, links[k]) : positions[k / 2];
   }
+  auto coordinate = [&](Index a) -> const Vec3& { return at[static_cast<std::size_t>(a)]; };
   // Nodes of each part (roots are the smallest node, so parts come in order).
   std::vector<std::vector<Index>> members;
   std::vector<Index> part_of_root(static_cast<std::size_t>(nn), -1);
   for (Index a = 0; a < nn; ++a) {
-    if (!stiff[static_cast<std::size_t>(a)]) continue;
     const Index r = parts.find(a);
     auto& slot = part_of_root[static_cast<std::size_t>(r)];
     if (slot < 0) {
@@ -142,8 +180,13 @@ FloatingParts find_floating_parts(const setup::Discretization& model, std::span<
     }
     members[static_cast<std::size_t>(slot)].push_back(a);
   }
-  std::vector<char> is_held(static_cast<std::size_t>(dm.num_dofs()), 0);
-  for (Index d : held) is_held[static_cast<std::size_t>(d)] = 1;
+  // Held, per reached node and component; a held dof of a node no link reaches changes nothing.
+  std::vector<char> is_held(static_cast<std::size_t>(nn) * static_cast<std::size_t>(dim), 0);
+  for (Index d : held) {
+    const auto it = std::lower_bound(name.begin(), name.end(), d / dim);
+    if (it != name.end() && *it == d / dim)
+      is_held[static_cast<std::size_t>((it - name.begin()) * dim + d % dim)] = 1;
+  }
 
   // The parts the held dofs do not fix (the parts share no node, so pinning
   // one changes no other's span), and the force at their dofs, read once.
@@ -157,23 +200,26 @@ FloatingParts find_floating_parts(const setup::Discretization& model, std::span<
   std::vector<Index> floating_dofs;
   for (const auto& nodes : members) {
     Vec3 centre = Vec3::Zero();
-    for (Index a : nodes) centre += dm.node_coordinate(model.mesh, a);
+    for (Index a : nodes) centre += coordinate(a);
     centre /= static_cast<double>(nodes.size());
     double size = 0.0;
-    for (Index a : nodes) size = std::max(size, (dm.node_coordinate(model.mesh, a) - centre).norm());
+    for (Index a : nodes) size = std::max(size, (coordinate(a) - centre).norm());
     if (size == 0.0) size = 1.0;
     Span span;
     for (Index a : nodes)
       for (int d = 0; d < dim; ++d)
         if (is_held[static_cast<std::size_t>(a * dim + d)])
-          span.add(mode_row(dim, (dm.node_coordinate(model.mesh, a) - centre) / size, d), 1e-8);
+          span.add(mode_row(dim, (coordinate(a) - centre) / size, d), 1e-8);
     if (static_cast<int>(span.basis.size()) == nr) continue;
     for (Index a : nodes)
       for (int d = 0; d < dim; ++d) floating_dofs.push_back(a * dim + d);
     floating.push_back({&nodes, centre, size, std::move(span)});
   }
   std::sort(floating_dofs.begin(), floating_dofs.end());
-  const std::vector<double> floating_force = force ? force(floating_dofs) : std::vector<double>{};
+  std::vector<Index> floating_names(floating_dofs.size());
+  for (std::size_t k = 0; k < floating_dofs.size(); ++k)
+    floating_names[k] = name[static_cast<std::size_t>(floating_dofs[k] / dim)] * dim + floating_dofs[k] % dim;
+  const std::vector<double> floating_force = force ? force(floating_names) : std::vector<double>{};
   auto force_at = [&](Index dof) {
     return floating_force[static_cast<std::size_t>(
         std::lower_bound(floating_dofs.begin(), floating_dofs.end(), dof) - floating_dofs.begin())];
@@ -183,7 +229,7 @@ FloatingParts find_floating_parts(const setup::Discretization& model, std::span<
   for (Floating& part : floating) {
     const std::vector<Index>& nodes = *part.nodes;
     Span& span = part.span;
-    auto rel = [&](Index a) -> Vec3 { return (dm.node_coordinate(model.mesh, a) - part.centre) / part.size; };
+    auto rel = [&](Index a) -> Vec3 { return (coordinate(a) - part.centre) / part.size; };
     ++out.parts;
     // The free modes: the complement of the held rows' span.
     Span all = span;
@@ -201,10 +247,10 @@ FloatingParts find_floating_parts(const setup::Discretization& model, std::span<
             scale += std::abs(F) * row.norm();
           }
         if (scale > 0.0 && std::abs(work) > 1e-9 * scale) {
-          Vec3 lo = dm.node_coordinate(model.mesh, nodes.front()), hi = lo;
+          Vec3 lo = coordinate(nodes.front()), hi = lo;
           for (Index a : nodes) {
-            lo = lo.cwiseMin(dm.node_coordinate(model.mesh, a));
-            hi = hi.cwiseMax(dm.node_coordinate(model.mesh, a));
+            lo = lo.cwiseMin(coordinate(a));
+            hi = hi.cwiseMax(coordinate(a));
           }
           throw Error(
               fmt::format("bond failures have cut free a part of {} nodes (between ({:g}, {:g}, {:g}) and "
@@ -227,7 +273,7 @@ FloatingParts find_floating_parts(const setup::Discretization& model, std::span<
           const Index dof = a * dim + d;
           if (is_held[static_cast<std::size_t>(dof)]) continue;
           if (span.add(mode_row(dim, rel(a), d), tol)) {
-            out.pins.push_back(dof);
+            out.pins.push_back(name[static_cast<std::size_t>(a)] * dim + d);
             is_held[static_cast<std::size_t>(dof)] = 1;
           }
         }

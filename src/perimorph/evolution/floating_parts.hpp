@@ -37,11 +37,15 @@ std::vector<Index> stiffness_links(const setup::Discretization& model, const ass
                                    std::span<const char> cells = {});
 
 /// The links of the whole stiffness graph, on every process: on several, each
-/// finds those of its part's cells (partition::cells_of_part, the bisection of
-/// the stretch pass: their graph rows only) and they are gathered (collective;
-/// 16 bytes a node a part reaches). On one, stiffness_links of every cell.
+/// finds those of its part's cells (setup::cells_of_process, the cells of the
+/// stretch pass: their graph rows only) and they are gathered (collective;
+/// 16 bytes a node a part reaches). On one, stiffness_links of every cell. On
+/// a piece of the model (setup::cut_to_piece) the nodes are named by their
+/// keys (partition::PieceDofs; setup::dof_name names their dofs), and
+/// `positions` gets the position of each link's first node (40 bytes a node).
 std::vector<Index> stiffness_links_over_processes(const setup::Discretization& model,
-                                                  const assembly::NonlocalSpace& space);
+                                                  const assembly::NonlocalSpace& space,
+                                                  std::vector<Vec3>* positions = nullptr);
 
 /// The parts of the stiffness graph made by `links` (stiffness_links; nodes
 /// reached by no link have no stiffness at all and are left out: BondFailure
@@ -51,8 +55,13 @@ std::vector<Index> stiffness_links_over_processes(const setup::Discretization& m
 /// dofs only, once (collective where they are spread: every process passes the
 /// same links and held dofs). Throws Error naming the part when the forces do
 /// work on one of its free modes. The same parts, pins and figures for any
-/// split of the links, in any order.
+/// split of the links, in any order. The links may name nodes otherwise than
+/// `model` numbers them (a piece's: stiffness_links_over_processes), with
+/// `positions` then the position of each link's first node, and `held`,
+/// `force`'s dofs and the pins named alike (node name × dim + component), in
+/// whichever order the names sort the nodes.
 FloatingParts find_floating_parts(const setup::Discretization& model, std::span<const Index> links,
-                                  std::span<const Index> held, const la::DofValuesAt& force);
+                                  std::span<const Index> held, const la::DofValuesAt& force,
+                                  std::span<const Vec3> positions = {});
 
 }  // namespace perimorph::evolution

@@ -4,9 +4,12 @@
 #include "perimorph/mesh/part_mesh.hpp"
 #include "perimorph/partition/partition.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace perimorph::setup {
 
@@ -81,6 +84,12 @@ Discretization cut_to_piece(const Discretization& part, std::span<const int> own
   for (Index c : cells) piece_owner.push_back(owner[static_cast<std::size_t>(c)]);
   partition::PieceDofs piece_dofs = partition::piece_dofs(dofmap, pm, piece_owner, part_number,
                                                           part.mesh.num_nodes(), part.mesh.num_cells());
+  // Dof names (dof_name) are key × dim + component.
+  if (static_cast<long long>(piece_dofs.key_space) * part.dim() > std::numeric_limits<Index>::max())
+    throw Error(
+        fmt::format("piece dofs: keys up to {} name dofs up to {} × {}, beyond PETSc's 32-bit indices; a "
+                    "PETSc built with 64-bit indices would be needed",
+                    piece_dofs.key_space, piece_dofs.key_space, part.dim()));
 
   std::optional<NonlocalModel> nl;
   if (part.nonlocal) {
@@ -128,6 +137,21 @@ Index global_cell(const Discretization& disc, Index c) {
 
 Index local_cell(const Discretization& disc, Index global) {
   return disc.piece ? disc.piece->local_cell(global) : global;
+}
+
+Index dof_name(const Discretization& disc, Index dof) {
+  if (!disc.piece) return dof;
+  const Index dim = disc.dim();
+  return disc.piece->dofs.key[static_cast<std::size_t>(dof / dim)] * dim + dof % dim;
+}
+
+Index dof_of_name(const Discretization& disc, Index name) {
+  if (!disc.piece) return name;
+  const Index dim = disc.dim();
+  const auto& keys = disc.piece->dofs.key;
+  const auto it = std::lower_bound(keys.begin(), keys.end(), name / dim);
+  return it != keys.end() && *it == name / dim ? static_cast<Index>(it - keys.begin()) * dim + name % dim
+                                               : -1;
 }
 
 std::vector<char> cells_of_process(const Discretization& disc, int processes, int process) {

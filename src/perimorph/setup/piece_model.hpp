@@ -37,6 +37,14 @@ struct PieceNumbers {
 Index global_cell(const Discretization& disc, Index c);
 Index local_cell(const Discretization& disc, Index global);
 
+/// A name for dof `dof` of `disc` that every process gives it alike, for
+/// lists of dofs gathered over the processes: the dof itself on a part or the
+/// whole model; on a piece key × dim + component, its node's key
+/// (partition::PieceDofs: names sort as the whole model's dofs do). And back:
+/// the dof of a name, -1 where a piece lacks it (a search).
+Index dof_name(const Discretization& disc, Index dof);
+Index dof_of_name(const Discretization& disc, Index name);
+
 /// The piece of `part` (built for part `part_number`, or the whole model)
 /// that its process reads, in local numbers: its mesh (a mesh::PartMesh's,
 /// with the box layout kept), dof map, morphed C, non-local points and cell

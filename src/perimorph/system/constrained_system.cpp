@@ -6,6 +6,7 @@
 #include "perimorph/core/error.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/la/shell_matrix.hpp"
+#include "perimorph/setup/piece_model.hpp"
 
 #include <fmt/format.h>
 
@@ -227,7 +228,8 @@ std::vector<Index> ConstrainedSystem::without_stiffness(std::span<const Index> d
   const std::vector<double> diag = A_.owned_diagonal_at(mine);
   std::vector<Index> out;
   for (std::size_t k = 0; k < mine.size(); ++k)
-    if (std::abs(diag[k]) <= 1e-12 * std::abs(initial_diagonal_[at[k]])) out.push_back(mine[k]);
+    if (std::abs(diag[k]) <= 1e-12 * std::abs(initial_diagonal_[at[k]]))
+      out.push_back(setup::dof_name(model_, mine[k]));
   return gathered_sorted(out);
 }
 

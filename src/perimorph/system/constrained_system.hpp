@@ -102,7 +102,9 @@ class ConstrainedSystem {
   /// (1e-12) of its value before any downdate: dofs left with no stiffness,
   /// sorted. Spread over processes, each looks at the dofs it owns and the
   /// answers are gathered (collective: the same `dofs` on every process, the
-  /// same answer).
+  /// same answer). On a piece of the model (setup::cut_to_piece) each process
+  /// passes its own dofs (its owned ones among them are looked at) and the
+  /// answer is in the dofs' names (setup::dof_name), sorted.
   std::vector<Index> without_stiffness(std::span<const Index> dofs) const;
   /// The same for every free dof, without listing them whole.
   std::vector<Index> free_dofs_without_stiffness() const;
