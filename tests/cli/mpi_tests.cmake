@@ -74,9 +74,9 @@ cmp \"$4.info1\" \"$4.info2\"; cmp \"$4.gc1\" \"$4.gc2\"; grep -c 'G_c =' \"$4.g
   # preconditioner takes other iterates), 1e-10 for the direct ones (SuperLU_DIST
   # distributed against PETSc's serial Cholesky, CHOLMOD or MUMPS: round-off),
   # 1e-8 for B6 (CG with a kept factor, rtol 1e-12). Elastic: plate_tension,
-  # b2, b1, P4 at N = 20 (matrix-free, rtol 1e-8), all four on each
-  # process's piece of the model (run::runs_on_pieces); bond failure: the fracture
-  # plate, B6 at h = 2δ/3; bond failure with adaptive α: the flagship; local
+  # b2, b1, P4 at N = 20 (matrix-free, rtol 1e-8); bond failure: the fracture
+  # plate, B6 at h = 2δ/3 (these six on each process's piece of the model:
+  # run::runs_on_pieces); bond failure with adaptive α: the flagship; local
 # damage handing over to α and bond failure: B8 at h = δ/2 (the hole plate; on 3 processes by hand,
   # docs/benchmarks/distributed-runs.md: 3 processes on CI's two cores take minutes).
   foreach(same "plate_tension/case.toml:2:1e-7" "plate_tension/case.toml:3:1e-7"

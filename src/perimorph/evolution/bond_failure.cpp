@@ -84,8 +84,18 @@ Proposal BondFailure::inspect(const RunState& state, const system::ConstrainedSy
 }
 
 Effect BondFailure::apply(RunState& state, system::ConstrainedSystem& system) {
-  applied_ = apply(proposed_, state, system);
+  applied_ = apply_and_count(proposed_, state, system);
   return Effect::downdate;
+}
+
+FailureEnergy BondFailure::apply_and_count(const std::vector<assembly::StretchedBond>& bonds, RunState& state,
+                                           system::ConstrainedSystem& system) {
+  const std::size_t held = state.failed.size();
+  std::size_t elsewhere = 0;
+  for (const auto& b : bonds) elsewhere += b.id.e < 0 ? 1 : 0;
+  const FailureEnergy energy = apply(bonds, state, system);
+  broken_ += state.failed.size() - held + elsewhere;
+  return energy;
 }
 
 std::vector<assembly::StretchedBond> BondFailure::select(const RunState& state,

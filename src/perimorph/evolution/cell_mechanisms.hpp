@@ -23,6 +23,7 @@
 #include "perimorph/la/owned_dofs.hpp"
 #include "perimorph/setup/discretization.hpp"
 
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -33,6 +34,26 @@ struct CellMechanisms {
   std::size_t modes = 0;    ///< their free modes, = pins.size()
   std::vector<Index> pins;  ///< dofs that, held, remove the modes (sorted)
 };
+
+/// The cells to look at, in order: each one's dofs (named as the held dofs,
+/// the pins and the dofs the two vectors are read at) and its centroid (for
+/// a message).
+struct CellsToCheck {
+  std::vector<std::vector<Index>> dofs;
+  std::vector<Vec3> centroid;
+};
+
+/// `cells` of `model` (each once, in the given order), their dofs `model`'s.
+CellsToCheck cells_to_check(const setup::Discretization& model, std::span<const Index> cells);
+
+/// On a piece of the model (setup::cut_to_piece), collective: the cells each
+/// process lists (of `model`, the cells it decides on: setup::cells_of_process),
+/// gathered in whole-mesh cell order with their dofs' names (setup::dof_name).
+CellsToCheck cells_to_check_over_pieces(const setup::Discretization& model, std::span<const Index> mine);
+
+/// The principal blocks of A over sets of dofs (named as CellsToCheck's),
+/// the same on every process (collective).
+using BlocksAt = std::function<std::vector<Eigen::MatrixXd>(std::span<const std::vector<Index>>)>;
 
 /// The free modes of `cells` (each once, in the given order) in the
 /// constrained matrix `A` (finalized), with `reference_diagonal` A's diagonal
@@ -46,5 +67,11 @@ struct CellMechanisms {
 CellMechanisms find_cell_mechanisms(const setup::Discretization& model, const la::Matrix& A,
                                     const la::DofValuesAt& reference_diagonal, std::span<const Index> cells,
                                     std::span<const Index> held, const la::DofValuesAt& force);
+
+/// The same over cells given with their dofs, A's blocks read through
+/// `blocks`; held dofs, pins and the vectors' dofs named as the cells' dofs.
+CellMechanisms find_cell_mechanisms(const CellsToCheck& cells, const BlocksAt& blocks,
+                                    const la::DofValuesAt& reference_diagonal, std::span<const Index> held,
+                                    const la::DofValuesAt& force);
 
 }  // namespace perimorph::evolution

@@ -7,7 +7,10 @@
 // by a spring of its initial stiffness, such a part by springs on a minimal
 // set of its dofs (statically determinate, so they carry no force when the
 // part's loads balance), and a motion inside one cell that no intact bond
-// resists (cell_mechanisms.hpp) likewise. Effect::hold.
+// resists (cell_mechanisms.hpp) likewise. Effect::hold. The dofs it finds
+// and records are named by setup::dof_name, so that every process of a run
+// on pieces of the model finds and holds the same ones (each the dofs of its
+// piece among them).
 
 #include "perimorph/evolution/component.hpp"
 #include "perimorph/setup/discretization.hpp"

@@ -58,8 +58,10 @@ struct RunState {
   /// D per cell, half of each failed bond to each end: the cells with a
   /// failed bond only (0 elsewhere), so that it costs the crack, not the model.
   std::unordered_map<Index, double> cell_dissipated;
-  Index num_cells = 0;              ///< the model's cells (a checkpoint writes D of each)
-  std::vector<Index> held_dofs;     ///< dofs held by springs: detached dofs, pins of parts
+  Index num_cells = 0;  ///< the model's cells (a checkpoint writes D of each)
+  /// Dofs held by springs: detached dofs, pins of parts (on a piece of the
+  /// model their names, setup::dof_name, every process's alike).
+  std::vector<Index> held_dofs;
   std::size_t detached_dofs = 0;    ///< free dofs left with no stiffness, cumulative
   std::size_t floating_parts = 0;   ///< parts cut free and held, cumulative
   std::size_t cell_mechanisms = 0;  ///< cells with a free motion held (cell_mechanisms.hpp), cumulative

@@ -83,7 +83,9 @@ class Matrix final : public assembly::MatrixInserter {
   /// The principal blocks A[s, s] of each set s of dofs, as block does.
   /// Distributed: collective, the same sets on every process, each owner's
   /// rows summed over the processes once (one reduction for all the blocks),
-  /// the blocks on every process bitwise as on one process.
+  /// the blocks on every process bitwise as on one process. A dof may be -1
+  /// where this process lacks it (a piece of the model: the sets are the
+  /// same dofs, each process's numbers) when it owns no row of that set.
   std::vector<Eigen::MatrixXd> blocks(std::span<const std::vector<Index>> sets) const;
   Index rows() const;
   /// Number of stored non-zeros (allocated = used after finalize).

@@ -214,10 +214,12 @@ std::vector<Eigen::MatrixXd> Matrix::distributed_blocks(std::span<const Index> d
   for (Index n : sizes) {
     const auto set = dofs.subspan(first, static_cast<std::size_t>(n));
     cols.resize(set.size());
-    for (std::size_t j = 0; j < set.size(); ++j) cols[j] = global(set[j]);
+    for (std::size_t j = 0; j < set.size(); ++j) cols[j] = set[j] < 0 ? -1 : global(set[j]);
     for (Index i = 0; i < n; ++i) {
       const Index dof = set[static_cast<std::size_t>(i)];
-      if (!d.owns(dof / bs)) continue;
+      if (dof < 0 || !d.owns(dof / bs)) continue;
+      PERIMORPH_ASSERT(std::find(cols.begin(), cols.end(), PetscInt{-1}) == cols.end(),
+                       "an owned row of a block whose dofs this process lacks");
       const PetscInt row = global(dof);
       PM_PETSC(MatGetValues(m_, 1, &row, static_cast<PetscInt>(n), cols.data(), values.data() + at + i * n));
     }

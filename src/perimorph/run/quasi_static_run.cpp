@@ -88,7 +88,7 @@ void QuasiStaticRun::apply_load(int i) {
   rec_ = IncrementRecord{};
   damage_updates_ = 0;
   newton_steps_before_ = damage_ ? damage_->newton_steps() : 0;
-  failed_before_ = state_.failed.size();
+  failed_before_ = bonds_failed();
   dissipated_before_ = state_.energy.dissipated;
 }
 
@@ -98,7 +98,7 @@ void QuasiStaticRun::solve() {
   try {
     // Failed bonds can leave mechanisms no support finds: a direct solve that
     // holds null pivots may then take over (la::LinearSolver).
-    if (!state_.failed.empty()) system_->allow_direct_fallback();
+    if (bonds_failed() > 0) system_->allow_direct_fallback();
     summary_.last_solve = system_->solve(lambda, u_);
     summary_.preconditioner_rebuilds += summary_.last_solve.rebuilt_preconditioner ? 1 : 0;
     if (summary_.last_solve.direct_fallback) {
@@ -107,7 +107,7 @@ void QuasiStaticRun::solve() {
     }
   } catch (const SolverError& e) {
     progress_->finish();
-    const std::size_t failed = state_.failed.size();
+    const std::size_t failed = bonds_failed();
     throw SolverError(fmt::format(
         "increment {}/{} (load factor {}): {}{}\n{}", state_.increment, increments(), lambda, e.what(),
         failed > 0 ? fmt::format(". {} bonds have failed: they can leave a mechanism, e.g. a part held only "
@@ -207,9 +207,12 @@ bool QuasiStaticRun::evolve() {
   }
   if (!changed) return false;
   system_->operator_changed();
-  if (bonds_failed_in_pass_)
+  if (bonds_failed_in_pass_) {
     output_->add_failed_bonds(state_.increment, rec_.break_iterations, fracture_->proposed(),
                               fracture_->proposed_points(), fracture_->s_crit());
+    if (disc_->piece)
+      for (const auto& p : fracture_->proposed_points()) failed_points_.emplace_back(p.g, p.h);
+  }
   return true;
 }
 
@@ -242,7 +245,7 @@ void QuasiStaticRun::record(bool force_vtu) {
     }
   }
   if (fracture_) {
-    rec_.bonds_broken = state_.failed.size();
+    rec_.bonds_broken = bonds_failed();
     rec_.dissipated = state_.energy.dissipated;
     rec_.overshoot = state_.energy.overshoot;
     const evolution::CrackArea crack = fracture_->crack_area(state_);
@@ -309,7 +312,7 @@ void QuasiStaticRun::write_vtu(int increment, bool listed_by_row) {
 void QuasiStaticRun::write_increment() {
   if (adaptivity_) adaptivity_->join_silent(state_);
   if (fracture_) {
-    rec_.bonds_broken_increment = state_.failed.size() - failed_before_;
+    rec_.bonds_broken_increment = bonds_failed() - failed_before_;
     rec_.dissipated_increment = state_.energy.dissipated - dissipated_before_;
   }
   record(false);
@@ -333,7 +336,9 @@ RunSummary QuasiStaticRun::finish() {
             : disc_->dofmap.num_dofs();
   summary_.alpha = state_.alpha;
   summary_.damage = state_.history;
-  if (disc_->nonlocal) {
+  if (disc_->piece) {
+    summary_.failed_bond_points = std::move(failed_points_);
+  } else if (disc_->nonlocal) {
     const auto& pts = disc_->nonlocal->points;
     for (const auto& id : state_.failed_in_order)
       summary_.failed_bond_points.emplace_back(bonds::point_position(disc_->mesh, pts, id.e, id.g),

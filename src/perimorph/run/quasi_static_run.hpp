@@ -115,6 +115,10 @@ class QuasiStaticRun {
   /// The whole vector of `v` (whole-length), which is exact at the dofs this
   /// process owns (collective): what a checkpoint and the summary hold.
   std::vector<double> whole(const std::vector<double>& v) const;
+  /// The bonds failed in the whole model, the same on every process: the
+  /// state's on one process or a part; on a piece, which holds only its own,
+  /// the bond failure's count.
+  std::size_t bonds_failed() const;
   /// init + Σ term(j) over owned_dofs_' entries j (every dof on one process,
   /// in dof order; spread over processes, each process's sum added in rank
   /// order; collective).
@@ -167,6 +171,9 @@ class QuasiStaticRun {
   std::vector<double> u_prev_, fint_prev_, fint_;
   IncrementRecord rec_;  ///< of the increment in progress
   std::size_t failed_before_ = 0;
+  /// On a piece of the model, where each failed bond's points are, in the
+  /// order they failed (on a part the summary reads the state's failed bonds).
+  std::vector<std::pair<Vec3, Vec3>> failed_points_;
   double dissipated_before_ = 0.0;
   bool options_checked_ = false;
   int checkpoint_every_ = 0;

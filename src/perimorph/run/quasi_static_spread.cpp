@@ -46,6 +46,11 @@ std::vector<double> QuasiStaticRun::whole(const std::vector<double>& v) const {
   return x.to_replicated();
 }
 
+std::size_t QuasiStaticRun::bonds_failed() const {
+  if (disc_->piece) return fracture_ ? fracture_->broken_over_model() : 0;
+  return state_.failed.size();
+}
+
 double QuasiStaticRun::add_over_dofs(double init, const std::function<double(std::size_t)>& term) const {
   return owned_dofs_.sum(init, term);
 }
