@@ -122,6 +122,9 @@ run_asan() {
     # the flagship twice on two processes (its same-answer run is left out above);
     # la::on_every_process runs in perimorph_mpi_tests
     'cli_mpi_two_runs_give_the_same_bits'
+    # the runs on pieces against the runs on parts on 3 processes (several whole runs each,
+    # 2 to 3 min under ASan); the same tests run on 1 and 2 processes (mpi_piece_runs_1|2_ranks)
+    'mpi_piece_runs_3_ranks'
     # the mesh fuzz target's replay (not built, see above)
     'fuzz_corpus_replay_mesh'
     # the verification suite: python scripts running the program on reduced benchmark

@@ -165,10 +165,17 @@ for d in two two_then_one two_then_three one_then_two; do /usr/bin/python3 \"$3\
     ENVIRONMENT "${PM_MPI_ENV};OMP_NUM_THREADS=1"
     PASS_REGULAR_EXPRESSION "files compared, 0 differ" TIMEOUT 300)
 
+  # The MPI unit tests, and apart the runs on pieces against the runs on parts
+  # (several whole runs each: the sanitizer job leaves out the 3-process one).
+  set(piece_runs "PieceRun.*:PieceFracture.RunsAsOnTheParts")
   foreach(ranks 1 2 3)
     add_test(NAME mpi_distributed_assembly_and_solve_${ranks}_ranks
-      COMMAND ${MPIEXEC_EXECUTABLE} -n ${ranks} $<TARGET_FILE:perimorph_mpi_tests>)
+      COMMAND ${MPIEXEC_EXECUTABLE} -n ${ranks} $<TARGET_FILE:perimorph_mpi_tests> --gtest_filter=-${piece_runs})
     set_tests_properties(mpi_distributed_assembly_and_solve_${ranks}_ranks PROPERTIES
       ENVIRONMENT "${PM_MPI_ENV};OMP_NUM_THREADS=1" TIMEOUT 300)
+    add_test(NAME mpi_piece_runs_${ranks}_ranks
+      COMMAND ${MPIEXEC_EXECUTABLE} -n ${ranks} $<TARGET_FILE:perimorph_mpi_tests> --gtest_filter=${piece_runs})
+    set_tests_properties(mpi_piece_runs_${ranks}_ranks PROPERTIES
+      ENVIRONMENT "${PM_MPI_ENV};OMP_NUM_THREADS=1" TIMEOUT 600)
   endforeach()
 endif()

@@ -201,7 +201,8 @@ TEST(PieceRun, WholeNumberingIsTheWholeDofMaps) {
 
 // A checkpoint of a run on pieces is written in the whole model's numbering
 // (system::WholeNumbering), as a run on parts writes it: each continues the
-// other. Three increments, a checkpoint after the second; the run on pieces
+// other. The mixed CG/DG plate and the matrix-free grid, in three
+// increments, a checkpoint after the second; the run on pieces
 // continued from the parts' checkpoint, and the run on parts from the pieces',
 // give the uninterrupted run's third increment and u.
 TEST(PieceRun, CheckpointsContinueOnPartsAndPieces) {
@@ -210,6 +211,8 @@ TEST(PieceRun, CheckpointsContinueOnPartsAndPieces) {
   if (la::world_rank() == 0) fs::remove_all(root);
   (void)la::any_over_processes(false);  // every process waits for the folder to be cleared
   for (auto [name, config] : elastic_cases()) {
+    // CG and DG nodes' keys (the mixed plate), and a matrix-free system (no matrix saved).
+    if (name != "mixed CG/DG plate pulled" && name != "matrix-free grid") continue;
     SCOPED_TRACE(name);
     const std::string stem = name.substr(0, name.find(' '));
     config.loading.factors = {0.25, 0.5, 1.0};
