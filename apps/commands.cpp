@@ -157,8 +157,7 @@ int run(const std::string& path, const std::string& out_dir, bool quiet, std::ve
   perimorph::install_stop_handlers();
   const perimorph::run::RunOptions options{out_dir, quiet, &progress, restart, checkpoint_every};
   const auto summary = perimorph::run::run_static(
-      perimorph::run::process_model(config, options,
-                                    [&](const std::string& phase) { progress.phase(phase); }),
+      perimorph::run::process_model(config, [&](const std::string& phase) { progress.phase(phase); }),
       options);
   progress.finish();
   if (!quiet) {

@@ -101,15 +101,18 @@ cmp \"$4.info1\" \"$4.info2\"; cmp \"$4.gc1\" \"$4.gc2\"; grep -c 'G_c =' \"$4.g
   endforeach()
 
   # A checkpoint does not depend on the number of processes (its matrices and
-  # vectors are saved in the assembly's numbering): the fracture plate's
-  # checkpoint of increment 25 written on 2 processes continues on 1, one
-  # written on 1 continues on 2, and both runs are the uninterrupted one's
-  # within the direct solves' round-off (bonds fail in increments 26 to 30);
-  # continued on 2, it is the uninterrupted run on 2 bit for bit.
+  # vectors are saved in the whole model's numbering, its failed bonds in its
+  # cell numbers: run::WholeState on the pieces a run with bond failure goes
+  # on): the fracture plate's checkpoint of increment 27 (with the 38 838
+  # bonds failed in increments 2 to 11; bonds failing after a checkpoint:
+  # mpi_piece_checkpoints_*) written on 2 processes continues on 1, one written on 1
+  # continues on 2, and both runs are the uninterrupted one's within the
+  # direct solves' round-off; continued on 2, it is the uninterrupted run on
+  # 2 bit for bit.
   set(out ${CMAKE_CURRENT_BINARY_DIR}/cli_output/mpi_checkpoint)
   add_test(NAME cli_mpi_checkpoint_continues_on_another_number_of_processes
-    COMMAND sh -c "set -e; rm -rf \"$4\"; \"$1\" run \"$2\" -o \"$4/one\" --quiet --checkpoint-every 25; \
-\"$0\" -n 2 \"$1\" run \"$2\" -o \"$4/two\" --quiet --checkpoint-every 25; \
+    COMMAND sh -c "set -e; rm -rf \"$4\"; \"$1\" run \"$2\" -o \"$4/one\" --quiet --checkpoint-every 27; \
+\"$0\" -n 2 \"$1\" run \"$2\" -o \"$4/two\" --quiet --checkpoint-every 27; \
 cp -r \"$4/two\" \"$4/two_then_one\"; cp -r \"$4/two\" \"$4/two_then_two\"; cp -r \"$4/one\" \"$4/one_then_two\"; \
 \"$1\" run \"$2\" -o \"$4/two_then_one\" --restart \"$4/two_then_one\"; \
 \"$0\" -n 2 \"$1\" run \"$2\" -o \"$4/one_then_two\" --restart \"$4/one_then_two\"; \
@@ -120,7 +123,7 @@ for d in two two_then_one one_then_two; do /usr/bin/python3 \"$3\" \"$4/one\" \"
             ${CMAKE_CURRENT_SOURCE_DIR}/cli/compare_distributed.py ${out} ${CMAKE_CURRENT_SOURCE_DIR}/cli/compare_runs.py)
   set_tests_properties(cli_mpi_checkpoint_continues_on_another_number_of_processes PROPERTIES
     ENVIRONMENT "${PM_MPI_ENV};OMP_NUM_THREADS=1"
-    PASS_REGULAR_EXPRESSION "continuing after increment 25 of 30.*continuing after increment 25 of 30.*tolerance 1e-10: ok.*tolerance 1e-10: ok.*tolerance 1e-10: ok.*files compared, 0 differ"
+    PASS_REGULAR_EXPRESSION "continuing after increment 27 of 30.*continuing after increment 27 of 30.*tolerance 1e-10: ok.*tolerance 1e-10: ok.*tolerance 1e-10: ok.*files compared, 0 differ"
     FAIL_REGULAR_EXPRESSION "differences|missing in"
     TIMEOUT 300)
 
@@ -166,11 +169,20 @@ for d in two two_then_one two_then_three one_then_two; do /usr/bin/python3 \"$3\
     PASS_REGULAR_EXPRESSION "files compared, 0 differ" TIMEOUT 300)
 
   # The MPI unit tests, and apart the runs on pieces against the runs on parts
-  # (several whole runs each: the sanitizer job leaves out the 3-process one).
+  # and the checkpoints of runs with bond failure on pieces (several whole
+  # runs each: the sanitizer job leaves out the 3-process ones; a checkpoint
+  # needs several processes).
   set(piece_runs "PieceRun.*:PieceFracture.RunsAsOnTheParts")
+  set(piece_checkpoints "PieceCheckpoint.*")
+  foreach(ranks 2 3)
+    add_test(NAME mpi_piece_checkpoints_${ranks}_ranks
+      COMMAND ${MPIEXEC_EXECUTABLE} -n ${ranks} $<TARGET_FILE:perimorph_mpi_tests> --gtest_filter=${piece_checkpoints})
+    set_tests_properties(mpi_piece_checkpoints_${ranks}_ranks PROPERTIES
+      ENVIRONMENT "${PM_MPI_ENV};OMP_NUM_THREADS=1" TIMEOUT 600)
+  endforeach()
   foreach(ranks 1 2 3)
     add_test(NAME mpi_distributed_assembly_and_solve_${ranks}_ranks
-      COMMAND ${MPIEXEC_EXECUTABLE} -n ${ranks} $<TARGET_FILE:perimorph_mpi_tests> --gtest_filter=-${piece_runs})
+      COMMAND ${MPIEXEC_EXECUTABLE} -n ${ranks} $<TARGET_FILE:perimorph_mpi_tests> --gtest_filter=-${piece_runs}:${piece_checkpoints})
     # 8 to 13 s; under ASan up to 290 s (CI, 2026-12-06): the timeout leaves it room.
     set_tests_properties(mpi_distributed_assembly_and_solve_${ranks}_ranks PROPERTIES
       ENVIRONMENT "${PM_MPI_ENV};OMP_NUM_THREADS=1" TIMEOUT 600)

@@ -20,26 +20,20 @@
 #include "support/floating_plate.hpp"
 #include "support/model_cases.hpp"
 #include "support/owned_rows.hpp"
+#include "support/same_answer.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <tuple>
 
 namespace perimorph {
 namespace {
 
-bool same_bits(double a, double b) {
-  return std::memcmp(&a, &b, sizeof(double)) == 0;
-}
-bool same_bits(const Vec3& a, const Vec3& b) {
-  return same_bits(a.x(), b.x()) && same_bits(a.y(), b.y()) && same_bits(a.z(), b.z());
-}
+using testing::same_bits;
 
 /// Cases with [fracture]: the fracture plate (CG, structured, a pre-crack
 /// cut), the mixed CG/DG plate and the 3D ball of DG degree 0.
@@ -285,25 +279,7 @@ TEST(PieceFracture, RunsAsOnTheParts) {
   const fs::path root = fs::temp_directory_path() / ("perimorph_piece_fracture_" + std::to_string(processes));
   if (rank == 0) fs::remove_all(root);
   (void)la::any_over_processes(false);  // every process waits for the folder to be cleared
-  // The plate of floating_parts_test with bonds that may fail only in a band
-  // around x = 2, 1 wide (wider than the bonds): pulled, it is cut through
-  // there, its right half held along x only (a floating part), cells of the
-  // band with motions no bond resists.
-  auto plate = testing::floating_plate(false);
-  plate.loading.factors = {0.5, 1.0};
-  casefile::RegionSpec left, right;
-  left.name = "left";
-  left.id = 1;
-  left.upper = Vec3(1.5, 2.0, 1.0);
-  right.name = "right";
-  right.id = 2;
-  right.lower = Vec3(2.5, 0.0, 0.0);
-  right.upper = Vec3(4.0, 2.0, 1.0);
-  plate.regions = {left, right};
-  plate.fracture.no_fail = {"left", "right"};
-  plate.output.vtu = true;
-  plate.output.every = 1;
-  plate.output.failed_bonds = true;
+  auto plate = testing::plate_cut_in_band();
   auto fracture_plate =
       casefile::parse_case_file(std::string(PERIMORPH_SOURCE_DIR) + "/examples/fracture_plate_2d/case.toml");
   fracture_plate.loading.factors = {1.0 / 30, 2.0 / 30};  // its first two: a crack starts in the second
@@ -315,8 +291,8 @@ TEST(PieceFracture, RunsAsOnTheParts) {
     const run::RunOptions on_part{(root / name / "part").string(), true},
         on_piece{(root / name / "piece").string(), true};
     const setup::Discretization part = run::process_part(config);
-    ASSERT_TRUE(run::runs_on_pieces(part, on_piece));
-    const setup::Discretization piece = run::process_model(config, on_piece);
+    ASSERT_TRUE(run::runs_on_pieces(part));
+    const setup::Discretization piece = run::process_model(config);
     ASSERT_TRUE(piece.piece != nullptr);
     const run::RunSummary expected = run::run_static(part, on_part);
     const run::RunSummary got = run::run_static(piece, on_piece);
@@ -326,41 +302,7 @@ TEST(PieceFracture, RunsAsOnTheParts) {
       EXPECT_GT(expected.history.back().floating_parts, 0U);
       EXPECT_GT(expected.history.back().cell_mechanisms, 0U);
     }
-    for (std::size_t i = 0; i < got.history.size(); ++i) {
-      const auto &a = got.history[i], &b = expected.history[i];
-      SCOPED_TRACE("increment " + std::to_string(b.increment));
-      EXPECT_EQ(a.bonds_broken, b.bonds_broken);
-      EXPECT_EQ(a.bonds_broken_increment, b.bonds_broken_increment);
-      EXPECT_EQ(a.floating_parts, b.floating_parts);
-      EXPECT_EQ(a.cell_mechanisms, b.cell_mechanisms);
-      // Energies within 1e-10 of the largest of the record's (the overshoot is
-      // a difference at round-off), areas of their own.
-      const double energy =
-          std::max({std::abs(b.external_work), std::abs(b.strain_energy), std::abs(b.dissipated)});
-      for (auto [mine, theirs, scale] :
-           {std::tuple{a.strain_energy, b.strain_energy, energy},
-            {a.external_work, b.external_work, energy},
-            {a.dissipated, b.dissipated, energy},
-            {a.overshoot, b.overshoot, energy},
-            {a.crack_area, b.crack_area, std::abs(b.crack_area)},
-            {a.broken_face_area, b.broken_face_area, std::abs(b.broken_face_area)}}) {
-        if (bitwise) {
-          EXPECT_TRUE(same_bits(mine, theirs) || (std::isnan(mine) && std::isnan(theirs)))
-              << mine << " " << theirs;
-        } else if (!std::isnan(theirs)) {
-          EXPECT_NEAR(mine, theirs, 1e-10 * scale);
-        }
-      }
-      if (bitwise) {
-        EXPECT_EQ(a.iterations, b.iterations);
-      }
-    }
-    // The failed bonds' positions, in the order they failed.
-    ASSERT_EQ(got.failed_bond_points.size(), expected.failed_bond_points.size());
-    for (std::size_t k = 0; k < got.failed_bond_points.size(); ++k)
-      ASSERT_TRUE(same_bits(got.failed_bond_points[k].first, expected.failed_bond_points[k].first) &&
-                  same_bits(got.failed_bond_points[k].second, expected.failed_bond_points[k].second))
-          << k;
+    testing::expect_same_fracture_run(got, expected, bitwise);
     if (!bitwise) continue;
     const std::string mine = "_p" + std::to_string(rank) + ".vtu";
     int compared = 0;

@@ -104,8 +104,8 @@ TEST(PieceRun, GivesTheRunOnThePartsBitForBit) {
         on_piece{(root / stem / "piece").string(), true};
     // This process's part of the whole model, as a run built it before it went on pieces.
     const setup::Discretization part = run::process_part(config);
-    ASSERT_TRUE(run::runs_on_pieces(part, on_piece));
-    const setup::Discretization piece = run::process_model(config, {});
+    ASSERT_TRUE(run::runs_on_pieces(part));
+    const setup::Discretization piece = run::process_model(config);
     ASSERT_EQ(piece.piece != nullptr, la::world_size() > 1) << "cut to pieces on several processes only";
     if (!piece.piece) continue;
     const run::RunSummary expected = run::run_static(part, on_part);
@@ -168,7 +168,7 @@ TEST(PieceRun, WholeNumberingIsTheWholeDofMaps) {
   for (const auto& [name, config] : elastic_cases()) {
     SCOPED_TRACE(name);
     const setup::Discretization part = run::process_part(config);
-    const setup::Discretization piece = run::process_model(config, {});
+    const setup::Discretization piece = run::process_model(config);
     if (!piece.piece) continue;
     const int bs = piece.dim();
     const system::WholeNumbering whole(piece.piece->dofs, bs);
@@ -218,7 +218,7 @@ TEST(PieceRun, CheckpointsContinueOnPartsAndPieces) {
     config.loading.factors = {0.25, 0.5, 1.0};
     config.output.checkpoint_every = 2;
     const setup::Discretization part = run::process_part(config);
-    const setup::Discretization piece = run::process_model(config, {});
+    const setup::Discretization piece = run::process_model(config);
     if (!piece.piece) continue;  // one process: no pieces
     const fs::path on_part = root / stem / "part", on_piece = root / stem / "piece";
     const run::RunSummary whole_run = run::run_static(part, {on_part.string(), true});

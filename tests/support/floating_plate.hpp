@@ -45,6 +45,31 @@ inline casefile::CaseConfig floating_plate(bool traction) {
   return c;
 }
 
+/// floating_plate(false) with bonds that may fail only in a band around
+/// x = 2, 1 wide (wider than the bonds), pulled in two increments (0.5, 1),
+/// writing VTU and failed bonds at each: it is cut through there, its right
+/// half held along x only (a floating part), cells of the band with motions
+/// no bond resists. Run by tests/mpi/piece_fracture_mpitest.cpp and
+/// piece_checkpoint_mpitest.cpp.
+inline casefile::CaseConfig plate_cut_in_band() {
+  auto plate = floating_plate(false);
+  plate.loading.factors = {0.5, 1.0};
+  casefile::RegionSpec left, right;
+  left.name = "left";
+  left.id = 1;
+  left.upper = Vec3(1.5, 2.0, 1.0);
+  right.name = "right";
+  right.id = 2;
+  right.lower = Vec3(2.5, 0.0, 0.0);
+  right.upper = Vec3(4.0, 2.0, 1.0);
+  plate.regions = {left, right};
+  plate.fracture.no_fail = {"left", "right"};
+  plate.output.vtu = true;
+  plate.output.every = 1;
+  plate.output.failed_bonds = true;
+  return plate;
+}
+
 /// The run's constrained system of a model at load factor 1 (applied forces,
 /// prescribed values), on one process.
 inline system::ConstrainedSystem constrained_system(const setup::Discretization& model) {

@@ -84,18 +84,8 @@ Proposal BondFailure::inspect(const RunState& state, const system::ConstrainedSy
 }
 
 Effect BondFailure::apply(RunState& state, system::ConstrainedSystem& system) {
-  applied_ = apply_and_count(proposed_, state, system);
+  applied_ = apply(proposed_, state, system);
   return Effect::downdate;
-}
-
-FailureEnergy BondFailure::apply_and_count(const std::vector<assembly::StretchedBond>& bonds, RunState& state,
-                                           system::ConstrainedSystem& system) {
-  const std::size_t held = state.failed.size();
-  std::size_t elsewhere = 0;
-  for (const auto& b : bonds) elsewhere += b.id.e < 0 ? 1 : 0;
-  const FailureEnergy energy = apply(bonds, state, system);
-  broken_ += state.failed.size() - held + elsewhere;
-  return energy;
 }
 
 std::vector<assembly::StretchedBond> BondFailure::select(const RunState& state,
@@ -166,13 +156,16 @@ FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bon
   FailureEnergy energy;
   for (const auto& b : bonds) {
     const double critical = assembly::energy_at_stretch(b, s_crit_);
-    if (b.id.e < 0) {  // on a piece, a bond it does not hold: in the ledger only
+    if (b.id.e < 0) {  // on a piece, a bond it does not hold: in the ledger and the count only
       energy.dissipated += critical;
       energy.overshoot += b.energy - critical;
+      ++state.failed_over_model;
       continue;
     }
     if (!state.failed.add(b.id)) continue;
     state.failed_in_order.push_back(b.id);
+    if (disc_->piece) state.failed_place.push_back(state.failed_over_model);
+    ++state.failed_over_model;
     energy.dissipated += critical;
     energy.overshoot += b.energy - critical;
     state.cell_dissipated[b.id.e] += 0.5 * critical;

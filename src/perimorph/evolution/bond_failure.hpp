@@ -74,10 +74,6 @@ class BondFailure final : public Component {
   const std::vector<BondPoints>& proposed_points() const { return proposed_points_; }
   /// Their energy, from the last apply.
   const FailureEnergy& applied_energy() const { return applied_; }
-  /// The bonds this component's applies have broken in the whole model (on a
-  /// piece, those it does not hold too): RunState::failed's size on a part.
-  std::size_t broken_over_model() const { return broken_; }
-
   /// The space the stiffness is assembled with, the state's failed bonds left out.
   assembly::NonlocalSpace space(const RunState& state) const;
   double s_crit() const { return s_crit_; }
@@ -100,17 +96,15 @@ class BondFailure final : public Component {
                                               std::vector<BondPoints>* points = nullptr) const;
 
   /// Breaks `bonds` (from select at the state's displacement): records them in
-  /// the state (failed bonds, D and overshoot in the ledger, D per cell; a
-  /// bond a piece does not hold, e = −1, in the ledger only) and
+  /// the state (failed bonds, their count over the model and, on a piece,
+  /// their places in its order, D and overshoot in the ledger, D per cell; a
+  /// bond a piece does not hold, e = −1, in the ledger and count only) and
   /// downdates `system` by their blocks (ConstrainedSystem::downdate): K −=
   /// the blocks; A −= them on free rows and columns; the right-hand side takes
   /// their prescribed columns. Finalizes K and A. Returns their energy, at
   /// s_crit and beyond it.
   FailureEnergy apply(const std::vector<assembly::StretchedBond>& bonds, RunState& state,
                       system::ConstrainedSystem& system) const;
-  /// The same, counting the bonds broken (broken_over_model).
-  FailureEnergy apply_and_count(const std::vector<assembly::StretchedBond>& bonds, RunState& state,
-                                system::ConstrainedSystem& system);
 
   /// A bond's dofs and the shape values of its two points, in pair_kernel.hpp
   /// bond_block's layout: the dofs of E's nodes, then F's (E's alone when
@@ -151,7 +145,6 @@ class BondFailure final : public Component {
   std::vector<char> decides_;
   std::vector<assembly::StretchedBond> proposed_;
   std::vector<BondPoints> proposed_points_;
-  std::size_t broken_ = 0;
   FailureEnergy applied_;
 };
 

@@ -1,9 +1,11 @@
 #include "perimorph/evolution/checkpoint.hpp"
 
 #include "perimorph/core/binary_stream.hpp"
+#include "perimorph/core/error.hpp"
 #include "perimorph/evolution/adaptivity.hpp"
 #include "perimorph/evolution/local_damage.hpp"
 #include "perimorph/evolution/part_support.hpp"
+#include "perimorph/setup/discretization.hpp"
 
 #include <fmt/format.h>
 
@@ -201,6 +203,8 @@ void restore_state(RunState& state, core::BinaryReader& in) {
     state.failed.add(id);
     state.failed_in_order.push_back(id);
   }
+  state.failed_over_model = state.failed_in_order.size();
+  state.failed_place.clear();
   const std::vector<double> cell_dissipated = in.get_vector<double>();
   check_size(in, cell_dissipated, static_cast<std::size_t>(state.num_cells), "a dissipation per cell");
   state.cell_dissipated.clear();
@@ -246,6 +250,11 @@ void Adaptivity::restore(const setup::Discretization& disc, core::BinaryReader& 
 }
 
 void PartSupport::save(core::BinaryWriter& out) const {
+  // A checkpoint is written when the increment has settled (every component
+  // proposed nothing), so the last inspect's lists are empty: nothing to
+  // renumber on a piece of the model, whose lists are of dof names.
+  PERIMORPH_ASSERT(!disc_->piece || (detached_.empty() && pins_.empty() && cell_pins_.empty()),
+                   "a checkpoint of a run on pieces of the model with dofs about to be held");
   out.tag("part support");
   out.put<std::uint64_t>(seen_);
   out.put<std::uint64_t>(downdates_seen_);

@@ -112,14 +112,13 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
   cell_pins_.clear();
   parts_ = 0;
   mechanisms_ = 0;
-  const std::size_t first = seen_;
-  seen_ = state.failed_in_order.size();
+  // Counted over the whole model, every process's alike; on a piece a
+  // process holds the failed bonds of its piece only, from `first` on.
+  const std::size_t first = state.failed_after(seen_), last = state.failed_in_order.size();
+  const bool failed_now = seen_ != state.failed_over_model;
+  seen_ = state.failed_over_model;
   const bool downdated = system.downdate_count() != downdates_seen_;
   downdates_seen_ = system.downdate_count();
-  // On a piece each process holds the failed bonds of its piece only: one's
-  // new bonds are every process's.
-  bool failed_now = first != seen_;
-  if (disc_->piece) failed_now = la::max_over_processes(failed_now ? 1 : 0) != 0;
   if (!failed_now && !downdated) return {};
   const int dim = disc_->dim();
   const la::DofValuesAt force = applied_force_of(*disc_, system),
@@ -151,7 +150,7 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
   // answer is shared: every process gets the serial one.
   const auto& points = disc_->nonlocal->points;
   bool separated = false;
-  for (std::size_t k = first; k < seen_ && !separated; ++k) {
+  for (std::size_t k = first; k < last && !separated; ++k) {
     const auto& id = state.failed_in_order[k];
     if (k > first && state.failed_in_order[k - 1].e == id.e && state.failed_in_order[k - 1].f == id.f)
       continue;
@@ -173,7 +172,7 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
   // The cells of the failed bonds may keep a motion no intact bond resists
   // (cell_mechanisms.hpp): looked at with what is about to be held left out.
   const CellsToCheck cells =
-      cells_of_failed_bonds(*disc_, std::span(state.failed_in_order).subspan(first, seen_ - first));
+      cells_of_failed_bonds(*disc_, std::span(state.failed_in_order).subspan(first, last - first));
   std::vector<Index> held(prescribed.begin(), prescribed.end());
   held.insert(held.end(), detached_.begin(), detached_.end());
   held.insert(held.end(), pins_.begin(), pins_.end());

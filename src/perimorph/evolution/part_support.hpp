@@ -48,7 +48,7 @@ class PartSupport final : public Component {
 
  private:
   const setup::Discretization* disc_;  ///< non-owning: the run's current discretization
-  std::size_t seen_ = 0;               ///< failed bonds already looked at (RunState::failed_in_order)
+  std::size_t seen_ = 0;               ///< failed bonds already looked at (RunState::failed_over_model)
   std::size_t downdates_seen_ = 0;     ///< ConstrainedSystem::downdate_count() at the last inspect
   std::vector<Index> detached_, pins_, cell_pins_;
   int parts_ = 0;

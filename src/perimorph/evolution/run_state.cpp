@@ -2,6 +2,8 @@
 
 #include "perimorph/setup/discretization.hpp"
 
+#include <algorithm>
+
 namespace perimorph::evolution {
 
 RunState::RunState(const setup::Discretization& disc)
@@ -10,6 +12,12 @@ RunState::RunState(const setup::Discretization& disc)
       num_cells(disc.mesh.num_cells()) {
   if (disc.damage) history.assign(static_cast<std::size_t>(disc.mesh.num_cells()) * disc.rule.size(), 0.0);
   if (disc.nonlocal) failed = bonds::BrokenBonds(disc.mesh.num_cells(), disc.nonlocal->points.per_cell);
+}
+
+std::size_t RunState::failed_after(std::size_t count) const {
+  if (failed_place.empty()) return std::min(count, failed_in_order.size());
+  return static_cast<std::size_t>(std::lower_bound(failed_place.begin(), failed_place.end(), count) -
+                                  failed_place.begin());
 }
 
 }  // namespace perimorph::evolution

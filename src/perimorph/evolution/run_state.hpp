@@ -55,6 +55,16 @@ struct RunState {
 
   bonds::BrokenBonds failed;                   ///< failed bonds, keyed by cell and point
   std::vector<bonds::BondId> failed_in_order;  ///< the same, in the order they failed
+  /// The bonds failed in the whole model: failed_in_order's size, but on a
+  /// piece of the model (setup::cut_to_piece), which holds only the failed
+  /// bonds whose two cells it holds; every process's alike.
+  std::size_t failed_over_model = 0;
+  /// On a piece, the place of each of failed_in_order in the whole model's
+  /// order of failure (ascending); empty elsewhere.
+  std::vector<std::size_t> failed_place;
+  /// The position in failed_in_order of the first bond that failed after the
+  /// whole model's first `count` ones (`count` itself but on a piece).
+  std::size_t failed_after(std::size_t count) const;
   /// D per cell, half of each failed bond to each end: the cells with a
   /// failed bond only (0 elsewhere), so that it costs the crack, not the model.
   std::unordered_map<Index, double> cell_dissipated;

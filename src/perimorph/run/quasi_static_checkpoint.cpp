@@ -9,8 +9,8 @@
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/run/checkpoint.hpp"
 #include "perimorph/run/quasi_static_run.hpp"
+#include "perimorph/run/whole_state.hpp"
 #include "perimorph/setup/piece_model.hpp"
-#include "perimorph/system/whole_numbering.hpp"
 
 #include <fmt/format.h>
 
@@ -19,32 +19,6 @@
 #include <utility>
 
 namespace perimorph::run {
-
-namespace {
-
-/// On a piece of the model (setup::cut_to_piece), its whole numbering and
-/// the whole mesh's cell count (collective); else none.
-struct WholeModel {
-  system::WholeNumbering numbering;
-  Index cells = 0;
-};
-std::optional<WholeModel> whole_model(const setup::Discretization& disc) {
-  if (!disc.piece) return std::nullopt;
-  Index mine = 0;
-  for (int p : disc.piece->owner) mine += p == disc.piece->part ? 1 : 0;
-  return WholeModel{system::WholeNumbering(disc.piece->dofs, disc.dim()),
-                    static_cast<Index>(la::sum_over_processes({static_cast<double>(mine)})[0])};
-}
-
-/// Only elastic runs go on pieces (run::runs_on_pieces): a state with no
-/// failed bond, held dof or damage, which the whole numbering carries whole.
-void check_elastic(const evolution::RunState& state) {
-  PERIMORPH_ASSERT(state.failed_in_order.empty() && state.cell_dissipated.empty() &&
-                       state.held_dofs.empty() && state.history.empty(),
-                   "only an elastic run goes on pieces of the model");
-}
-
-}  // namespace
 
 std::string basename_of(const casefile::CaseConfig& config) {
   if (!config.output.basename.empty()) return config.output.basename;
@@ -58,8 +32,8 @@ void QuasiStaticRun::checkpoint_if_due() {
 void QuasiStaticRun::save_checkpoint() {
   // Process 0 writes it; every process takes part in gathering the
   // distributed system and the vectors a process holds at its halo only,
-  // in the whole model's numbering (on a piece, WholeNumbering's).
-  const std::optional<WholeModel> whole_of = whole_model(*disc_);
+  // in the whole model's numbers (on a piece, run::WholeState's).
+  const std::optional<WholeState> whole_of = disc_->piece ? std::optional<WholeState>(*disc_) : std::nullopt;
   std::optional<io::AtomicFile> file;
   la::on_process_zero([&] { file.emplace(checkpoint_path_); });
   core::BinaryWriter out([&](std::string_view bytes) {
@@ -75,15 +49,9 @@ void QuasiStaticRun::save_checkpoint() {
   out.put<int>(summary_.direct_fallback_solves);
   out.put<int>(summary_.most_null_pivots);
   if (whole_of) {
-    out.put_vector(whole_of->numbering.whole(u_prev_));
-    out.put_vector(whole_of->numbering.whole(fint_prev_));
-    check_elastic(state_);
-    std::vector<double> u_piece = std::move(state_.u);
-    state_.u = whole_of->numbering.whole(owned_dofs_.of(u_piece));
-    const Index piece_cells = std::exchange(state_.num_cells, whole_of->cells);
-    evolution::save_state(state_, out);
-    state_.u = std::move(u_piece);
-    state_.num_cells = piece_cells;
+    out.put_vector(whole_of->numbering().whole(u_prev_));
+    out.put_vector(whole_of->numbering().whole(fint_prev_));
+    evolution::save_state(whole_of->whole(state_, owned_dofs_.of(state_.u)), out);
   } else {
     out.put_vector(owned_dofs_.whole(u_prev_));
     out.put_vector(owned_dofs_.whole(fint_prev_));
@@ -103,7 +71,7 @@ void QuasiStaticRun::save_checkpoint() {
     out.tag(component->name());
     component->save(out);
   }
-  system_->save(out);
+  system_->save(out, whole_of ? &whole_of->numbering() : nullptr);
   out.tag("end");
   out.flush();
   la::on_process_zero([&] { file->commit(); });
@@ -128,8 +96,8 @@ void QuasiStaticRun::restore(const std::string& path, const RunOptions& /*option
     disc_ = owned_.get();
   }
   // On a piece, the checkpoint's vectors are the whole model's (save_checkpoint).
-  const std::optional<WholeModel> whole_of = whole_model(*disc_);
-  const Index n = whole_of ? whole_of->numbering.whole_dofs() : disc_->dofmap.num_dofs();
+  const std::optional<WholeState> whole_of = disc_->piece ? std::optional<WholeState>(*disc_) : std::nullopt;
+  const Index n = whole_of ? whole_of->numbering().whole_dofs() : disc_->dofmap.num_dofs();
 
   in.expect("run");
   const double elapsed = in.get<double>();
@@ -146,16 +114,12 @@ void QuasiStaticRun::restore(const std::string& path, const RunOptions& /*option
     in.fail(fmt::format("vectors of {} values where the model has {} dofs", u_prev_.size(), n));
   state_ = evolution::RunState(*disc_);
   if (whole_of) {
-    u_prev_ = whole_of->numbering.piece_of(u_prev_);  // the constructor keeps their owned entries
-    fint_prev_ = whole_of->numbering.piece_of(fint_prev_);
-    const Index piece_cells = std::exchange(state_.num_cells, whole_of->cells);
-    state_.u.assign(static_cast<std::size_t>(n), 0.0);
-    evolution::restore_state(state_, in);
-    if (!state_.failed_in_order.empty() || !state_.cell_dissipated.empty() || !state_.held_dofs.empty())
-      in.fail(
-          "failed bonds or held dofs, which a run on pieces of the model cannot take (run::runs_on_pieces)");
-    state_.u = whole_of->numbering.piece_of(state_.u);
-    state_.num_cells = piece_cells;
+    u_prev_ = whole_of->numbering().piece_of(u_prev_);  // the constructor keeps their owned entries
+    fint_prev_ = whole_of->numbering().piece_of(fint_prev_);
+    evolution::RunState whole_state = whole_of->empty_whole();
+    evolution::restore_state(whole_state, in);
+    state_ = whole_of->piece_of(whole_state);
+    failed_points_ = whole_of->failed_bond_points(whole_state);
   } else {
     evolution::restore_state(state_, in);
   }
@@ -179,7 +143,8 @@ void QuasiStaticRun::restore(const std::string& path, const RunOptions& /*option
     in.expect(component->name());
     component->restore(*disc_, in);
   }
-  system_ = system::ConstrainedSystem::restored(*disc_, std::move(setup_.bc), setup_.F, in);
+  system_ = system::ConstrainedSystem::restored(*disc_, std::move(setup_.bc), setup_.F, in,
+                                                whole_of ? &whole_of->numbering() : nullptr);
   in.expect("end");
   if (!in.at_end()) in.fail("bytes after its end");
 

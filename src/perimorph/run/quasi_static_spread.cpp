@@ -47,8 +47,7 @@ std::vector<double> QuasiStaticRun::whole(const std::vector<double>& v) const {
 }
 
 std::size_t QuasiStaticRun::bonds_failed() const {
-  if (disc_->piece) return fracture_ ? fracture_->broken_over_model() : 0;
-  return state_.failed.size();
+  return state_.failed_over_model;
 }
 
 double QuasiStaticRun::add_over_dofs(double init, const std::function<double(std::size_t)>& term) const {

@@ -71,11 +71,7 @@ void QuasiStaticRun::stop_if_asked() {
   // Before the first solve of an increment the state is still that of the
   // last one: it can be kept as a checkpoint.
   std::string saved;
-  if (disc_->piece && fracture_ && i > 1) {
-    saved =
-        " No checkpoint is written: a run with bond failure on pieces of the model (run::runs_on_pieces) "
-        "has none yet; give --checkpoint-every to run it with checkpoints.";
-  } else if (rec_.break_iterations == 0 && i > 1 && summary_.checkpoint_increment != i - 1) {
+  if (rec_.break_iterations == 0 && i > 1 && summary_.checkpoint_increment != i - 1) {
     const double lambda = state_.load_factor;
     state_.increment = i - 1;
     state_.load_factor = disc_->config.loading.factors[static_cast<std::size_t>(i - 2)];

@@ -22,14 +22,9 @@ std::string resolve_output_directory(const casefile::CaseConfig& config, const R
   return (std::filesystem::path(config.path).parent_path() / dir).lexically_normal().string();
 }
 
-bool runs_on_pieces(const setup::Discretization& part, const RunOptions& options) {
+bool runs_on_pieces(const setup::Discretization& part) {
   const auto& config = part.config;
-  if (part.damage || config.adaptivity.enabled) return false;
-  const int checkpoint_every =
-      options.checkpoint_every >= 0 ? options.checkpoint_every : config.output.checkpoint_every;
-  // A checkpoint of a fracture run holds its failed bonds and held dofs,
-  // which a piece has in its own numbers.
-  return !config.fracture.enabled || (checkpoint_every == 0 && options.restart.empty());
+  return !part.damage && !config.adaptivity.enabled;
 }
 
 setup::Discretization process_part(const casefile::CaseConfig& config, const setup::PhaseCallback& on_phase) {
@@ -40,11 +35,11 @@ setup::Discretization process_part(const casefile::CaseConfig& config, const set
                                       }});
 }
 
-setup::Discretization process_model(const casefile::CaseConfig& config, const RunOptions& options,
+setup::Discretization process_model(const casefile::CaseConfig& config,
                                     const setup::PhaseCallback& on_phase) {
   const int processes = la::world_size(), rank = la::world_rank();
   setup::Discretization part = process_part(config, on_phase);
-  if (processes == 1 || !runs_on_pieces(part, options)) return part;
+  if (processes == 1 || !runs_on_pieces(part)) return part;
   if (on_phase) on_phase("piece");
   const std::vector<int> owner = partition::coordinate_bisection(part.mesh, processes).owner;
   return setup::cut_to_piece(part, owner, rank, la::any_over_processes);

@@ -85,16 +85,15 @@ struct RunSummary {
   std::string output_directory, csv_path, pvd_path;
 };
 
-/// True if a run of `part` (build_discretization's model or part of it) with
-/// `options` can go on each process's piece of the model
-/// (setup::cut_to_piece), where nothing as long as the whole model is kept
-/// after the set-up: an elastic run, assembled or matrix-free, with or
-/// without checkpoints and restarts (a checkpoint is written in the whole
-/// model's numbering: system::WholeNumbering), or a run with bond failure
-/// (its decisions and what they cut loose shared in whole-mesh cell numbers
-/// and dof names) without checkpoints or a restart. Not with damage or
-/// [adaptivity]. Otherwise a distributed run goes on the part.
-bool runs_on_pieces(const setup::Discretization& part, const RunOptions& options);
+/// Whether a run of `part` (the case's model or part of it) can go on each
+/// process's piece of the model (setup::cut_to_piece), where nothing as long
+/// as the whole model is kept after the set-up: an elastic run, assembled or
+/// matrix-free, or a run with bond failure (its decisions and what they cut
+/// loose shared in whole-mesh cell numbers and dof names), with or without
+/// checkpoints and restarts (a checkpoint is written in the whole model's
+/// numbers: run::WholeState). Not with damage or [adaptivity]. Otherwise a
+/// distributed run goes on the part.
+bool runs_on_pieces(const setup::Discretization& part);
 
 /// This process's part of the case's model: build_discretization with one
 /// part per process of PETSC_COMM_WORLD (the CG/DG flags shared by their
@@ -105,7 +104,7 @@ setup::Discretization process_part(const casefile::CaseConfig& config,
 
 /// The model this process runs: its process_part, cut to its piece
 /// (setup::cut_to_piece) where runs_on_pieces, the part dropped. Collective.
-setup::Discretization process_model(const casefile::CaseConfig& config, const RunOptions& options,
+setup::Discretization process_model(const casefile::CaseConfig& config,
                                     const setup::PhaseCallback& on_phase = {});
 
 /// Output directory of a case: the override if given, else the case's

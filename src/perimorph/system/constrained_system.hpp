@@ -34,6 +34,8 @@ class BinaryReader;
 
 namespace perimorph::system {
 
+class WholeNumbering;
+
 class ConstrainedSystem {
  public:
   /// Constrains `K` (assembled, finalized) by `bc`, with the external force
@@ -56,10 +58,13 @@ class ConstrainedSystem {
   /// were (every downdate, spring and reassembly since the first assembly is
   /// in them), on `model` with its constraints `bc` and loads `F`. No solver
   /// yet. Throws Error (naming the checkpoint) if they do not fit `model`.
+  /// On a piece of the model they are in the whole model's numbering: `whole`
+  /// if given (the piece's), else built (collective).
   static std::unique_ptr<ConstrainedSystem> restored(const setup::Discretization& model,
                                                      setup::DirichletData bc, std::span<const double> F,
-                                                     core::BinaryReader& in);
-  void save(core::BinaryWriter& out) const;
+                                                     core::BinaryReader& in,
+                                                     const WholeNumbering* whole = nullptr);
+  void save(core::BinaryWriter& out, const WholeNumbering* whole = nullptr) const;
 
   /// A dof vector laid out as the system's (spread over the processes as K
   /// is, or serial), zero.

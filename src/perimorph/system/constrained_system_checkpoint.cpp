@@ -22,7 +22,7 @@ namespace {
 /// The matrix in the whole model's numbering, whatever the number of
 /// processes (collective): a checkpoint written on P processes restarts on any
 /// number, on parts or pieces.
-void save_matrix(core::BinaryWriter& out, const la::Matrix& M, const std::optional<WholeNumbering>& whole) {
+void save_matrix(core::BinaryWriter& out, const la::Matrix& M, const WholeNumbering* whole) {
   const la::Matrix::Replicated r = whole ? whole->whole(M) : M.replicated();
   out.put<int>(r.pattern.block_size);
   out.put_vector(r.pattern.row_offsets);
@@ -33,7 +33,7 @@ void save_matrix(core::BinaryWriter& out, const la::Matrix& M, const std::option
 /// Spread over the processes as the model's stiffness is
 /// (system::distribution_over_processes; collective); `rows`: the whole model's dofs.
 la::Matrix load_matrix(core::BinaryReader& in, const setup::Discretization& model, Index rows,
-                       const std::optional<WholeNumbering>& whole) {
+                       const WholeNumbering* whole) {
   la::Matrix::Replicated r;
   assembly::SparsityPattern& p = r.pattern;
   p.block_size = in.get<int>();
@@ -54,15 +54,18 @@ la::Matrix load_matrix(core::BinaryReader& in, const setup::Discretization& mode
   return la::Matrix::from_replicated(whole ? whole->piece_of(r) : r, distribution_over_processes(model));
 }
 
-/// On a piece of the model, its whole numbering (collective); else none.
-std::optional<WholeNumbering> whole_numbering(const setup::Discretization& model) {
-  if (!model.piece) return std::nullopt;
-  return WholeNumbering(model.piece->dofs, model.dim());
+/// On a piece of the model, its whole numbering: `given`, else one built in
+/// `built` (collective); else null.
+const WholeNumbering* whole_numbering(const setup::Discretization& model, const WholeNumbering* given,
+                                      std::optional<WholeNumbering>& built) {
+  if (!model.piece) return nullptr;
+  if (given) return given;
+  return &built.emplace(model.piece->dofs, model.dim());
 }
 
 /// The dofs last downdated on every process, in the whole numbering: on a
 /// piece each process's (those of the bonds its piece holds) gathered.
-std::vector<Index> whole_dofs(const std::vector<Index>& dofs, const std::optional<WholeNumbering>& whole) {
+std::vector<Index> whole_dofs(const std::vector<Index>& dofs, const WholeNumbering* whole) {
   if (!whole) return dofs;
   const std::vector<Index> mine = whole->whole_dofs_of(dofs);
   const std::vector<double> all = la::all_gather(std::vector<double>(mine.begin(), mine.end()));
@@ -75,14 +78,15 @@ std::vector<Index> whole_dofs(const std::vector<Index>& dofs, const std::optiona
 
 }  // namespace
 
-void ConstrainedSystem::save(core::BinaryWriter& out) const {
+void ConstrainedSystem::save(core::BinaryWriter& out, const WholeNumbering* given) const {
   if (free_) {
     // Nothing changes a matrix-free system: the case rebuilds it.
     out.tag("matrix-free system");
     return;
   }
   out.tag("system");
-  const std::optional<WholeNumbering> whole = whole_numbering(model_);
+  std::optional<WholeNumbering> built;
+  const WholeNumbering* whole = whole_numbering(model_, given, built);
   save_matrix(out, K_, whole);
   save_matrix(out, A_, whole);
   out.put_vector(whole ? whole->whole(rhs_unit_.at_owned(owned_)) : rhs_unit_.to_replicated());
@@ -94,13 +98,15 @@ void ConstrainedSystem::save(core::BinaryWriter& out) const {
 std::unique_ptr<ConstrainedSystem> ConstrainedSystem::restored(const setup::Discretization& model,
                                                                setup::DirichletData bc,
                                                                std::span<const double> F,
-                                                               core::BinaryReader& in) {
+                                                               core::BinaryReader& in,
+                                                               const WholeNumbering* given) {
   if (model.config.solver.op == casefile::SolverOperator::matrix_free) {
     in.expect("matrix-free system");
     return std::make_unique<ConstrainedSystem>(model, build_matrix_free_stiffness(model), std::move(bc), F);
   }
   in.expect("system");
-  const std::optional<WholeNumbering> whole = whole_numbering(model);
+  std::optional<WholeNumbering> built;
+  const WholeNumbering* whole = whole_numbering(model, given, built);
   const Index n = whole ? whole->whole_dofs() : model.dofmap.num_dofs();
   la::Matrix K = load_matrix(in, model, n, whole);
   auto system = std::make_unique<ConstrainedSystem>(model, std::move(K), std::move(bc), F);

@@ -1,0 +1,168 @@
+#include "perimorph/run/whole_state.hpp"
+
+#include "perimorph/bonds/nonlocal_points.hpp"
+#include "perimorph/core/error.hpp"
+#include "perimorph/la/petsc_session.hpp"
+#include "perimorph/setup/piece_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+namespace perimorph::run {
+
+namespace {
+
+/// Whole-model integers (≥ 0) from the one process that holds each (the
+/// others pass −1): exact as doubles below 2⁵³.
+std::vector<Index> from_owners(const std::vector<Index>& mine) {
+  std::vector<double> v(mine.size());
+  for (std::size_t k = 0; k < mine.size(); ++k) v[k] = mine[k] < 0 ? -0.0 : static_cast<double>(mine[k]);
+  const std::vector<double> all = la::from_owners(std::move(v));
+  std::vector<Index> out(all.size());
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    PERIMORPH_ASSERT(!std::signbit(all[k]), "a held dof whose node no process owns");
+    out[k] = static_cast<Index>(all[k]);
+  }
+  return out;
+}
+
+}  // namespace
+
+WholeState::WholeState(const setup::Discretization& piece)
+    : piece_(&piece), numbering_(piece.piece->dofs, piece.dim()) {
+  Index mine = 0;
+  for (int p : piece.piece->owner) mine += p == piece.piece->part ? 1 : 0;
+  cells_ = static_cast<Index>(la::sum_over_processes({static_cast<double>(mine)})[0]);
+}
+
+bool WholeState::owns_dof(Index dof) const {
+  return piece_->piece->dofs.owned[static_cast<std::size_t>(dof / piece_->dim())] != 0;
+}
+
+bool WholeState::decides_cell(Index c) const {
+  return piece_->piece->owner[static_cast<std::size_t>(c)] == piece_->piece->part;
+}
+
+evolution::RunState WholeState::whole(const evolution::RunState& state,
+                                      std::span<const double> owned_u) const {
+  PERIMORPH_ASSERT(state.history.empty(), "a run with damage does not go on pieces of the model");
+  evolution::RunState out(*piece_);
+  out.increment = state.increment;
+  out.load_factor = state.load_factor;
+  out.alpha = state.alpha;
+  out.u = numbering_.whole(owned_u);
+  out.num_cells = cells_;
+  out.failed = {};
+  out.detached_dofs = state.detached_dofs;
+  out.floating_parts = state.floating_parts;
+  out.cell_mechanisms = state.cell_mechanisms;
+  out.energy = state.energy;
+
+  // The failed bonds: every process's with their places, in the whole order.
+  constexpr std::size_t kPacked = 5;
+  std::vector<double> mine;
+  mine.reserve(state.failed_in_order.size() * kPacked);
+  for (std::size_t k = 0; k < state.failed_in_order.size(); ++k) {
+    const auto& id = state.failed_in_order[k];
+    if (!decides_cell(id.e)) continue;  // sent once, by the process that decided it
+    mine.insert(mine.end(), {static_cast<double>(state.failed_place[k]),
+                             static_cast<double>(setup::global_cell(*piece_, id.e)),
+                             static_cast<double>(setup::global_cell(*piece_, id.f)),
+                             static_cast<double>(id.g), static_cast<double>(id.h)});
+  }
+  const std::vector<double> all = la::all_gather(mine);
+  out.failed_in_order.assign(state.failed_over_model, {-1, -1, -1, -1});
+  for (std::size_t k = 0; k + kPacked <= all.size(); k += kPacked) {
+    const auto place = static_cast<std::size_t>(all[k]);
+    PERIMORPH_ASSERT(place < out.failed_in_order.size(), "a failed bond's place beyond the model's count");
+    out.failed_in_order[place] = {static_cast<Index>(all[k + 1]), static_cast<Index>(all[k + 2]),
+                                  static_cast<int>(all[k + 3]), static_cast<int>(all[k + 4])};
+  }
+  for (const auto& id : out.failed_in_order)
+    PERIMORPH_ASSERT(id.e >= 0, "a failed bond that no process holds");
+  out.failed_over_model = state.failed_over_model;
+
+  // D per cell: each cell's from the process that decides it.
+  std::vector<double> dissipated;
+  for (const auto& [c, d] : state.cell_dissipated)
+    if (decides_cell(c))
+      dissipated.insert(dissipated.end(), {static_cast<double>(setup::global_cell(*piece_, c)), d});
+  const std::vector<double> every = la::all_gather(dissipated);
+  for (std::size_t k = 0; k + 1 < every.size(); k += 2)
+    out.cell_dissipated[static_cast<Index>(every[k])] = every[k + 1];
+
+  // The held dofs, names to whole dofs, each from the process owning its node.
+  std::vector<Index> held(state.held_dofs.size(), -1);
+  for (std::size_t k = 0; k < held.size(); ++k)
+    if (const Index d = setup::dof_of_name(*piece_, state.held_dofs[k]); d >= 0 && owns_dof(d))
+      held[k] = numbering_.whole_dofs_of({&d, 1})[0];
+  out.held_dofs = from_owners(held);
+  return out;
+}
+
+evolution::RunState WholeState::empty_whole() const {
+  evolution::RunState out(*piece_);
+  out.u.assign(static_cast<std::size_t>(numbering_.whole_dofs()), 0.0);
+  out.num_cells = cells_;
+  if (piece_->nonlocal) out.failed = bonds::BrokenBonds(cells_, piece_->nonlocal->points.per_cell);
+  out.history.clear();
+  return out;
+}
+
+evolution::RunState WholeState::piece_of(const evolution::RunState& whole) const {
+  PERIMORPH_ASSERT(whole.history.empty(), "a run with damage does not go on pieces of the model");
+  evolution::RunState out(*piece_);
+  out.increment = whole.increment;
+  out.load_factor = whole.load_factor;
+  out.alpha = whole.alpha;
+  out.u = numbering_.piece_of(whole.u);
+  out.detached_dofs = whole.detached_dofs;
+  out.floating_parts = whole.floating_parts;
+  out.cell_mechanisms = whole.cell_mechanisms;
+  out.energy = whole.energy;
+  for (std::size_t k = 0; k < whole.failed_in_order.size(); ++k) {
+    const auto& id = whole.failed_in_order[k];
+    const Index e = setup::local_cell(*piece_, id.e), f = setup::local_cell(*piece_, id.f);
+    if (e < 0 || f < 0) continue;
+    const bonds::BondId local{e, f, id.g, id.h};
+    out.failed.add(local);
+    out.failed_in_order.push_back(local);
+    out.failed_place.push_back(k);
+  }
+  out.failed_over_model = whole.failed_in_order.size();
+  for (const auto& [c, d] : whole.cell_dissipated)
+    if (const Index lc = setup::local_cell(*piece_, c); lc >= 0 && decides_cell(lc))
+      out.cell_dissipated[lc] = d;
+  std::vector<Index> names(whole.held_dofs.size(), -1);
+  for (std::size_t k = 0; k < names.size(); ++k)
+    if (const Index d = numbering_.piece_dofs_of({&whole.held_dofs[k], 1})[0]; d >= 0 && owns_dof(d))
+      names[k] = setup::dof_name(*piece_, d);
+  out.held_dofs = from_owners(names);
+  return out;
+}
+
+std::vector<std::pair<Vec3, Vec3>> WholeState::failed_bond_points(const evolution::RunState& whole) const {
+  const std::size_t n = whole.failed_in_order.size();
+  std::vector<double> mine(6 * n, -0.0);
+  if (piece_->nonlocal) {
+    const auto& pts = piece_->nonlocal->points;
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto& id = whole.failed_in_order[k];
+      const Index e = setup::local_cell(*piece_, id.e), f = setup::local_cell(*piece_, id.f);
+      if (e < 0 || f < 0 || !decides_cell(e)) continue;
+      const Vec3 g = bonds::point_position(piece_->mesh, pts, e, id.g),
+                 h = bonds::point_position(piece_->mesh, pts, f, id.h);
+      std::copy_n(g.data(), 3, mine.begin() + static_cast<std::ptrdiff_t>(6 * k));
+      std::copy_n(h.data(), 3, mine.begin() + static_cast<std::ptrdiff_t>(6 * k + 3));
+    }
+  }
+  const std::vector<double> all = la::from_owners(std::move(mine));
+  std::vector<std::pair<Vec3, Vec3>> out(n);
+  for (std::size_t k = 0; k < n; ++k)
+    out[k] = {Vec3(all[6 * k], all[6 * k + 1], all[6 * k + 2]),
+              Vec3(all[6 * k + 3], all[6 * k + 4], all[6 * k + 5])};
+  return out;
+}
+
+}  // namespace perimorph::run

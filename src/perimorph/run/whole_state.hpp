@@ -1,0 +1,67 @@
+#pragma once
+// The state of a run on a piece of the model (setup::cut_to_piece) in the
+// whole model's numbers, as a run on one process holds it, and back: what a
+// checkpoint of a run on pieces writes and reads (run/checkpoint.hpp), so that
+// a checkpoint continues on parts or pieces, on any number of processes.
+//
+// A piece holds the failed bonds whose two cells it holds, each with its place
+// in the whole model's order of failure (RunState::failed_place); every failed
+// bond is held by the process that decided it (the cells bonded to its part's
+// are in its piece). Its dissipation per cell is the whole model's on the
+// cells of its part (all their bonds are held, added in the same order), and
+// its held dofs are dof names (setup::dof_name), every process's alike.
+// Every function is collective over PETSC_COMM_WORLD and O(whole model) on
+// every process where it gathers a whole list: the cost of the checkpoint's
+// own whole vectors, paid once a checkpoint.
+
+#include "perimorph/core/types.hpp"
+#include "perimorph/evolution/run_state.hpp"
+#include "perimorph/system/whole_numbering.hpp"
+
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace perimorph::setup {
+struct Discretization;
+}
+
+namespace perimorph::run {
+
+class WholeState {
+ public:
+  /// For a piece of the model (Discretization::piece set).
+  explicit WholeState(const setup::Discretization& piece);
+
+  const system::WholeNumbering& numbering() const { return numbering_; }
+  /// The whole mesh's cell count.
+  Index cells() const { return cells_; }
+
+  /// `state` (the piece's, without damage history) in the whole model's
+  /// numbers: u from `owned_u` (its values at the owned dofs, la::OwnedDofs
+  /// order), the failed bonds in the whole order of failure, D of every cell,
+  /// the held dofs as whole dofs. The BrokenBonds set is left empty (a
+  /// checkpoint writes the ordered list).
+  evolution::RunState whole(const evolution::RunState& state, std::span<const double> owned_u) const;
+  /// An initial state of the whole model, for evolution::restore_state to
+  /// read a checkpoint's into (u, D per cell and the failed-bond set sized
+  /// for the whole model).
+  evolution::RunState empty_whole() const;
+  /// The piece's part of a whole state: u at the piece's dofs, the failed
+  /// bonds whose two cells the piece holds (with their places), D of its
+  /// part's cells (the only ones it reads), the held dofs as names.
+  evolution::RunState piece_of(const evolution::RunState& whole) const;
+  /// Where the two points of each of a whole state's failed bonds are, in
+  /// its order, on every process (each from the process that decided it).
+  std::vector<std::pair<Vec3, Vec3>> failed_bond_points(const evolution::RunState& whole) const;
+
+ private:
+  bool owns_dof(Index dof) const;
+  bool decides_cell(Index c) const;
+
+  const setup::Discretization* piece_;
+  system::WholeNumbering numbering_;
+  Index cells_ = 0;
+};
+
+}  // namespace perimorph::run

@@ -1,0 +1,130 @@
+// Checkpoints of runs with bond failure on pieces of the model (issue 17;
+// run/whole_state.hpp): written in the whole model's numbers, as a run on
+// parts writes them, so that each continues the other.
+
+#include "perimorph/casefile/parse_case.hpp"
+#include "perimorph/la/petsc_session.hpp"
+#include "perimorph/run/static_run.hpp"
+#include "perimorph/setup/discretization.hpp"
+#include "support/floating_plate.hpp"
+#include "support/model_cases.hpp"
+#include "support/same_answer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+namespace perimorph {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A run continued from the checkpoint in `from` (copied to `to` first),
+/// writing its own checkpoint after the last increment, `last`.
+run::RunSummary continued(const setup::Discretization& model, const fs::path& from, const fs::path& to,
+                          int last) {
+  if (la::world_rank() == 0) fs::copy(from, to, fs::copy_options::recursive);
+  (void)la::any_over_processes(false);  // every process waits for the copy
+  run::RunOptions options{to.string(), true};
+  options.restart = to.string();
+  options.checkpoint_every = last;
+  return run::run_static(model, options);
+}
+
+/// The bytes of a checkpoint with its two wall times (the run's elapsed time
+/// and its time spent rebuilding the model, 8 bytes each after the "run"
+/// tag and after the count that follows it) zeroed.
+std::string checkpoint_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::string tag = std::string("\x03\0\0\0\0\0\0\0", 8) + "run";
+  const std::size_t at = bytes.find(tag);
+  if (at == std::string::npos || at + tag.size() + 24 > bytes.size()) return {};
+  for (std::size_t k : {std::size_t{0}, std::size_t{16}}) bytes.replace(at + tag.size() + k, 8, 8, '\0');
+  return bytes;
+}
+
+// A checkpoint written after bonds failed and parts were held, on the parts
+// and on the pieces, continued on the other and on its own: the plate cut
+// through in its band (a floating part, cells with motions held: the held
+// dofs written as whole dofs, read back as dof names) and the fracture plate
+// (its crack started, more bonds failing after the checkpoint), both solved
+// directly. Each continued run gives the uninterrupted runs' records and
+// failed-bond positions: the same bits on 2 processes, within 1e-10 on 3
+// (where the direct solve's sums come in another order after a restart, as
+// between runs on parts and pieces).
+TEST(PieceCheckpoint, WithFailedBondsContinuesOnPartsAndPieces) {
+  const int processes = la::world_size();
+  if (processes == 1) GTEST_SKIP() << "one process runs on the whole model";
+  const fs::path root =
+      fs::temp_directory_path() / ("perimorph_piece_checkpoint_fracture_" + std::to_string(processes));
+  if (la::world_rank() == 0) fs::remove_all(root);
+  (void)la::any_over_processes(false);
+  auto plate = testing::plate_cut_in_band();
+  plate.loading.factors = {0.5, 0.75, 1.0};
+  // A direct solve: a Krylov solve's preconditioner, kept across solves, is
+  // rebuilt on restart (run/checkpoint.hpp), which moves u at round-off.
+  plate.solver.petsc_options = "-ksp_type preonly -pc_type cholesky";
+  auto fracture_plate =
+      casefile::parse_case_file(std::string(PERIMORPH_SOURCE_DIR) + "/examples/fracture_plate_2d/case.toml");
+  fracture_plate.loading.factors = {1.0 / 30, 2.0 / 30, 3.0 / 30};
+  const std::vector<testing::NamedCase> cases = {{"plate cut free", plate},
+                                                 {"fracture plate", fracture_plate}};
+  const bool bitwise = processes <= 2;
+  for (auto [name, config] : cases) {
+    SCOPED_TRACE(name);
+    config.output.checkpoint_every = 2;
+    const setup::Discretization part = run::process_part(config);
+    const setup::Discretization piece = run::process_model(config);
+    ASSERT_TRUE(piece.piece != nullptr);
+    const fs::path on_part = root / name / "part", on_piece = root / name / "piece";
+    const run::RunSummary part_run = run::run_static(part, {on_part.string(), true});
+    const run::RunSummary piece_run = run::run_static(piece, {on_piece.string(), true});
+    ASSERT_EQ(part_run.checkpoint_increment, 2);
+    ASSERT_EQ(piece_run.checkpoint_increment, 2);
+    ASSERT_GT(part_run.history[1].bonds_broken, 0U);  // at the checkpoint
+    testing::expect_same_fracture_run(piece_run, part_run, bitwise);
+
+    const int last = static_cast<int>(config.loading.factors.size());
+    const run::RunSummary part_then_piece = continued(piece, on_part, root / name / "part_then_piece", last);
+    const run::RunSummary piece_then_part = continued(part, on_piece, root / name / "piece_then_part", last);
+    const run::RunSummary piece_then_piece =
+        continued(piece, on_piece, root / name / "piece_then_piece", last);
+    for (const auto* r : {&part_then_piece, &piece_then_part, &piece_then_piece}) {
+      ASSERT_EQ(r->restarted_after, 2);
+      ASSERT_EQ(r->checkpoint_increment, last);
+    }
+    {
+      SCOPED_TRACE("parts' checkpoint continued on pieces");
+      testing::expect_same_fracture_run(part_then_piece, piece_run, bitwise);
+    }
+    {
+      SCOPED_TRACE("pieces' checkpoint continued on parts");
+      testing::expect_same_fracture_run(piece_then_part, part_run, bitwise);
+    }
+    {
+      SCOPED_TRACE("pieces' checkpoint continued on pieces");
+      testing::expect_same_fracture_run(piece_then_piece, piece_run, bitwise);
+    }
+    if (!bitwise) continue;
+    // What the checkpoints hold (failed bonds in order, D per cell, held
+    // dofs, K, A, output positions) is the same bytes, but for wall times:
+    // the pieces' and the parts' after increment 2, and after the last
+    // those of the continued runs, on pieces and on parts.
+    const std::string basename = fs::path(part_run.checkpoint_path).filename().string();
+    const std::string written = checkpoint_bytes(part_run.checkpoint_path);
+    ASSERT_FALSE(written.empty());
+    EXPECT_TRUE(checkpoint_bytes(piece_run.checkpoint_path) == written) << "after increment 2";
+    const std::string then = checkpoint_bytes(piece_then_part.checkpoint_path);
+    ASSERT_FALSE(then.empty());
+    EXPECT_TRUE(checkpoint_bytes(part_then_piece.checkpoint_path) == then) << "parts then pieces";
+    EXPECT_TRUE(checkpoint_bytes(piece_then_piece.checkpoint_path) == then) << "pieces then pieces";
+  }
+}
+
+}  // namespace
+}  // namespace perimorph
