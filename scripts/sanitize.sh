@@ -125,7 +125,8 @@ run_asan() {
     # the runs on pieces against the runs on parts on 3 processes (several whole runs each,
     # 2 to 3 min under ASan); the same tests run on 1 and 2 processes (mpi_piece_runs_1|2_ranks)
     'mpi_piece_runs_3_ranks'
-    # the checkpoints of runs with bond failure on pieces, 3 processes (five fracture runs);
+    # the runs with bond failure or damage on pieces and their checkpoints, 3 processes
+    # (five runs of each of four cases);
     # the same test runs on 2 (mpi_piece_checkpoints_2_ranks)
     'mpi_piece_checkpoints_3_ranks'
     # the mesh fuzz target's replay (not built, see above)

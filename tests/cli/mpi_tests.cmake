@@ -169,7 +169,7 @@ for d in two two_then_one two_then_three one_then_two; do /usr/bin/python3 \"$3\
     PASS_REGULAR_EXPRESSION "files compared, 0 differ" TIMEOUT 300)
 
   # The MPI unit tests, and apart the runs on pieces against the runs on parts
-  # and the checkpoints of runs with bond failure on pieces (several whole
+  # and the runs with bond failure or damage on pieces and their checkpoints (several whole
   # runs each: the sanitizer job leaves out the 3-process ones; a checkpoint
   # needs several processes).
   set(piece_runs "PieceRun.*:PieceFracture.RunsAsOnTheParts")

@@ -7,6 +7,7 @@
 #include "perimorph/run/static_run.hpp"
 #include "perimorph/setup/discretization.hpp"
 #include "support/floating_plate.hpp"
+#include "support/fracture_cases.hpp"
 #include "support/model_cases.hpp"
 #include "support/same_answer.hpp"
 
@@ -48,16 +49,21 @@ std::string checkpoint_bytes(const std::string& path) {
   return bytes;
 }
 
-// A checkpoint written after bonds failed and parts were held, on the parts
-// and on the pieces, continued on the other and on its own: the plate cut
-// through in its band (a floating part, cells with motions held: the held
-// dofs written as whole dofs, read back as dof names) and the fracture plate
-// (its crack started, more bonds failing after the checkpoint), both solved
-// directly. Each continued run gives the uninterrupted runs' records and
+// Runs with bond failure or local damage on the pieces against the runs on
+// the parts, and a checkpoint written after bonds failed, parts were held or
+// damage grew, on the parts and on the pieces, continued on the other and on
+// its own: the plate cut through in its band (a floating part, cells with
+// motions held: the held dofs written as whole dofs, read back as dof
+// names), the fracture plate (its crack started, more bonds failing after
+// the checkpoint), and the damage handover plate without its adaptive α
+// (damage alone, and damage with bonds that fail where it is critical:
+// each change of d gathered in whole-model points, the history of every
+// cell of a piece kept), all solved directly. Each run gives the run on the
+// parts' records (counts, energies, damage, crack area, iterations) and
 // failed-bond positions: the same bits on 2 processes, within 1e-10 on 3
-// (where the direct solve's sums come in another order after a restart, as
-// between runs on parts and pieces).
-TEST(PieceCheckpoint, WithFailedBondsContinuesOnPartsAndPieces) {
+// (where the direct solve's sums come in another order, also after a
+// restart).
+TEST(PieceCheckpoint, RunsWithFailedBondsOrDamageContinueOnPartsAndPieces) {
   const int processes = la::world_size();
   if (processes == 1) GTEST_SKIP() << "one process runs on the whole model";
   const fs::path root =
@@ -72,8 +78,16 @@ TEST(PieceCheckpoint, WithFailedBondsContinuesOnPartsAndPieces) {
   auto fracture_plate =
       casefile::parse_case_file(std::string(PERIMORPH_SOURCE_DIR) + "/examples/fracture_plate_2d/case.toml");
   fracture_plate.loading.factors = {1.0 / 30, 2.0 / 30, 3.0 / 30};
+  auto damaged = testing::handover_plate(3);
+  damaged.adaptivity.enabled = false;
+  damaged.fracture.enabled = false;
+  auto damaged_with_bonds = testing::handover_plate(3);
+  damaged_with_bonds.adaptivity.enabled = false;
+  damaged_with_bonds.alpha = testing::pulled_case(2, {}, 2.5e-3).alpha;
   const std::vector<testing::NamedCase> cases = {{"plate cut free", plate},
-                                                 {"fracture plate", fracture_plate}};
+                                                 {"fracture plate", fracture_plate},
+                                                 {"damaged plate", damaged},
+                                                 {"damaged plate with bonds", damaged_with_bonds}};
   const bool bitwise = processes <= 2;
   for (auto [name, config] : cases) {
     SCOPED_TRACE(name);
@@ -86,7 +100,8 @@ TEST(PieceCheckpoint, WithFailedBondsContinuesOnPartsAndPieces) {
     const run::RunSummary piece_run = run::run_static(piece, {on_piece.string(), true});
     ASSERT_EQ(part_run.checkpoint_increment, 2);
     ASSERT_EQ(piece_run.checkpoint_increment, 2);
-    ASSERT_GT(part_run.history[1].bonds_broken, 0U);  // at the checkpoint
+    ASSERT_GT(part_run.history[1].bonds_broken + part_run.history[1].damaged_points,
+              0U);  // at the checkpoint
     testing::expect_same_fracture_run(piece_run, part_run, bitwise);
 
     const int last = static_cast<int>(config.loading.factors.size());

@@ -23,12 +23,13 @@ inline bool same_bits(const Vec3& a, const Vec3& b) {
   return same_bits(a.x(), b.x()) && same_bits(a.y(), b.y()) && same_bits(a.z(), b.z());
 }
 
-/// The records of a run with bond failure (`got`) against another's
-/// (`expected`), increment by increment from `got`'s first: the same failed
-/// bonds, floating parts and cell mechanisms; the energies, crack area and
+/// The records of a run with bond failure or damage (`got`) against
+/// another's (`expected`), increment by increment from `got`'s first: the
+/// same failed bonds, floating parts, cell mechanisms, damaged and critical
+/// points; the energies, largest damage, crack area and
 /// iteration counts the same bits where `bitwise`, else within 1e-10 of the
 /// largest of the record's energies (the areas of their own) and the
-/// iterations within one. Then the failed bonds' positions, in the order
+/// iterations (and damage updates) within one. Then the failed bonds' positions, in the order
 /// they failed, the same bits.
 inline void expect_same_fracture_run(const run::RunSummary& got, const run::RunSummary& expected,
                                      bool bitwise) {
@@ -43,13 +44,18 @@ inline void expect_same_fracture_run(const run::RunSummary& got, const run::RunS
     EXPECT_EQ(a.bonds_broken_increment, b.bonds_broken_increment);
     EXPECT_EQ(a.floating_parts, b.floating_parts);
     EXPECT_EQ(a.cell_mechanisms, b.cell_mechanisms);
+    EXPECT_EQ(a.damaged_points, b.damaged_points);
+    EXPECT_EQ(a.critical_points, b.critical_points);
+    EXPECT_LE(std::abs(a.damage_iterations - b.damage_iterations), bitwise ? 0 : 1);
     // The overshoot is a difference at round-off: scaled by the energies.
-    const double energy =
-        std::max({std::abs(b.external_work), std::abs(b.strain_energy), std::abs(b.dissipated)});
+    const double energy = std::max({std::abs(b.external_work), std::abs(b.strain_energy),
+                                    std::abs(b.dissipated), std::abs(b.damage_dissipated)});
     for (auto [mine, theirs, scale] :
          {std::tuple{a.strain_energy, b.strain_energy, energy},
           {a.external_work, b.external_work, energy},
           {a.dissipated, b.dissipated, energy},
+          {a.damage_dissipated, b.damage_dissipated, energy},
+          {a.max_damage, b.max_damage, 1.0},
           {a.overshoot, b.overshoot, energy},
           {a.crack_area, b.crack_area, std::abs(b.crack_area)},
           {a.broken_face_area, b.broken_face_area, std::abs(b.broken_face_area)}}) {

@@ -37,11 +37,11 @@ namespace {
 /// ½ uᵀ K u − λ Fᵀ u (K the system's unconstrained stiffness, F the applied
 /// force at load factor 1). `u` needs to be exact at the dofs this process
 /// owns only (collective).
-double potential(const system::ConstrainedSystem& system, std::span<const double> u, double lambda, int dim) {
+double potential(const system::ConstrainedSystem& system, std::span<const double> u, double lambda) {
   la::Vector x = system.make_vector(), Kx = system.make_vector();
   x.assign_replicated(u);
   system.K().mult(x, Kx);
-  const la::OwnedDofs owned(x.distribution(), dim, static_cast<Index>(u.size()));
+  const la::OwnedDofs& owned = system.owned_dofs();
   const auto k = Kx.at_owned(owned);
   const auto& F = system.applied_force();  // at the owned dofs
   PERIMORPH_ASSERT(F.size() == owned.size(), "the system's owned dofs are the vector's");
@@ -54,27 +54,34 @@ double potential(const system::ConstrainedSystem& system, std::span<const double
 }  // namespace
 
 /// Every process's changes (each from its own cells, in point order) on every
-/// process, in point order: the one-process order.
-std::vector<LocalDamage::Change> LocalDamage::gather_changes(const std::vector<Change>& mine) {
-  constexpr std::size_t packed_size = 4;
+/// process, in whole-model point order: the one-process order. On a piece of
+/// the model (setup::cut_to_piece) each point is given back in its numbers,
+/// kNotHeld where it lacks the cell.
+std::vector<LocalDamage::Change> LocalDamage::gather_changes(const std::vector<Change>& mine) const {
+  constexpr std::size_t packed_size = 7;
   std::vector<double> packed;
   packed.reserve(mine.size() * packed_size);
   for (const Change& ch : mine)
-    packed.insert(packed.end(), {static_cast<double>(ch.point), ch.d, ch.Y, ch.volume});
+    packed.insert(packed.end(), {static_cast<double>(ch.whole), ch.d, ch.old, ch.Y, ch.volume, ch.dissipated,
+                                 ch.critical ? 1.0 : 0.0});
   const std::vector<double> all = la::all_gather(packed);
+  const auto npts = static_cast<std::size_t>(disc_->damage->points_per_cell);
   std::vector<Change> out(all.size() / packed_size);
   for (std::size_t i = 0; i < out.size(); ++i) {
     const double* v = all.data() + i * packed_size;
-    out[i] = {static_cast<std::size_t>(v[0]), v[1], v[2], v[3]};
+    const auto whole = static_cast<std::size_t>(v[0]);
+    const Index c = setup::local_cell(*disc_, static_cast<Index>(whole / npts));
+    const std::size_t point = c < 0 ? kNotHeld : static_cast<std::size_t>(c) * npts + whole % npts;
+    out[i] = {point, whole, v[1], v[2], v[3], v[4], v[5], v[6] != 0.0};
   }
-  std::sort(out.begin(), out.end(), [](const Change& a, const Change& b) { return a.point < b.point; });
+  std::sort(out.begin(), out.end(), [](const Change& a, const Change& b) { return a.whole < b.whole; });
   return out;
 }
 
 void LocalDamage::ledger_move(RunState& state, const system::ConstrainedSystem& system,
                               std::span<const double> u_newton) const {
-  state.energy.overshoot -= potential(system, u_newton, state.load_factor, disc_->dim()) -
-                            potential(system, state.u, state.load_factor, disc_->dim());
+  state.energy.overshoot -=
+      potential(system, u_newton, state.load_factor) - potential(system, state.u, state.load_factor);
 }
 
 LocalDamage::LocalDamage(const setup::Discretization& disc)
@@ -107,19 +114,24 @@ Proposal LocalDamage::inspect(const RunState& state, const system::ConstrainedSy
       const fem::DamageLaw& L = dm.laws[static_cast<std::size_t>(law)];
       const double* C0 = dm.C0[static_cast<std::size_t>(law)].data();
       assembly::strains_at_points(space, c, state.u, strain, volume);
+      const auto whole_cell = static_cast<std::size_t>(setup::global_cell(*disc_, c));
       for (int q = 0; q < npts; ++q) {
-        const std::size_t k =
-            static_cast<std::size_t>(c) * static_cast<std::size_t>(npts) + static_cast<std::size_t>(q);
+        const auto n = static_cast<std::size_t>(npts), p = static_cast<std::size_t>(q);
+        const std::size_t k = static_cast<std::size_t>(c) * n + p;
         const double Y = fem::damage_force(C0, strain.data() + q * nv, nv);
-        const double d = fem::updated_damage(L, Y, state.history[k]);
-        if (d > state.history[k])
-          per_cell[static_cast<std::size_t>(c)].push_back({k, d, Y, volume[static_cast<std::size_t>(q)]});
+        const double old = state.history[k];
+        const double d = fem::updated_damage(L, Y, old);
+        if (d <= old) continue;
+        const double w = volume[p];
+        const double dissipated = (fem::damage_dissipation(L, d) - fem::damage_dissipation(L, old)) * w;
+        per_cell[static_cast<std::size_t>(c)].push_back(
+            {k, whole_cell * n + p, d, old, Y, w, dissipated, d >= L.d_c});
       }
     }
   }
   for (auto& changes : per_cell) proposed_.insert(proposed_.end(), changes.begin(), changes.end());
   if (!decides_.empty()) proposed_ = gather_changes(proposed_);
-  for (const Change& ch : proposed_) largest_ = std::max(largest_, ch.d - state.history[ch.point]);
+  for (const Change& ch : proposed_) largest_ = std::max(largest_, ch.d - ch.old);
   if (largest_ <= tolerance_) proposed_.clear();
   return {proposed_.size()};
 }
@@ -155,29 +167,32 @@ Effect LocalDamage::apply(RunState& state, system::ConstrainedSystem& system) {
   std::vector<char> changed(static_cast<std::size_t>(disc_->mesh.num_cells()), 0);
   std::vector<Eigen::MatrixXd> C(static_cast<std::size_t>(npts));
   EnergyLedger& ledger = state.energy;
+  const auto n = static_cast<std::size_t>(npts);
+  // The ledger books every change (on a piece, those of cells it lacks too),
+  // in the whole model's point order.
+  for (const Change& ch : proposed_) {
+    // At fixed u, the stiffness drop releases Y Δd per volume; what the
+    // threshold does not dissipate is the overshoot of the finite step (≥ 0).
+    ledger.damage_dissipated += ch.dissipated;
+    ledger.overshoot += ch.Y * (ch.d - ch.old) * ch.volume - ch.dissipated;
+    if (ch.critical)
+      newly_critical_.emplace_back(static_cast<Index>(ch.whole / n), static_cast<int>(ch.whole % n));
+  }
   for (std::size_t first = 0; first < proposed_.size();) {
-    const auto c = static_cast<Index>(proposed_[first].point / static_cast<std::size_t>(npts));
-    const int law = dm.law_of(c);
-    const fem::DamageLaw& L = dm.laws[static_cast<std::size_t>(law)];
-    const Eigen::MatrixXd& C0 = dm.C0[static_cast<std::size_t>(law)];
+    if (proposed_[first].point == kNotHeld) {
+      ++first;
+      continue;
+    }
+    const auto c = static_cast<Index>(proposed_[first].point / n);
+    const Eigen::MatrixXd& C0 = dm.C0[static_cast<std::size_t>(dm.law_of(c))];
     for (auto& m : C) m = Eigen::MatrixXd::Zero(nv, nv);
     std::size_t last = first;
-    for (; last < proposed_.size() &&
-           proposed_[last].point / static_cast<std::size_t>(npts) == static_cast<std::size_t>(c);
+    for (; last < proposed_.size() && proposed_[last].point != kNotHeld &&
+           proposed_[last].point / n == static_cast<std::size_t>(c);
          ++last) {
       const Change& ch = proposed_[last];
-      double& d = state.history[ch.point];
-      const double dd = ch.d - d;
-      const double dissipated =
-          (fem::damage_dissipation(L, ch.d) - fem::damage_dissipation(L, d)) * ch.volume;
-      // At fixed u, the stiffness drop releases Y Δd per volume; what the
-      // threshold does not dissipate is the overshoot of the finite step (≥ 0).
-      ledger.damage_dissipated += dissipated;
-      ledger.overshoot += ch.Y * dd * ch.volume - dissipated;
-      const int q = static_cast<int>(ch.point % static_cast<std::size_t>(npts));
-      C[static_cast<std::size_t>(q)] = dd * C0;
-      if (ch.d >= L.d_c) newly_critical_.emplace_back(c, q);
-      d = ch.d;
+      C[ch.point % n] = (ch.d - ch.old) * C0;
+      state.history[ch.point] = ch.d;
     }
     delta.set_cell_points(c, C);
     changed[static_cast<std::size_t>(c)] = 1;

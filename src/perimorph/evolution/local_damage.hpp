@@ -57,21 +57,30 @@ class LocalDamage final : public Component {
   int newton_failures() const { return newton_failures_; }
   /// The largest growth of d the last inspect found (converged: ≤ tolerance).
   double largest_change() const { return largest_; }
-  /// Local quadrature points whose d reached d_c in the last apply (cell, point).
+  /// Local quadrature points whose d reached d_c in the last apply (cell in
+  /// the whole mesh's numbers, point).
   const std::vector<std::pair<Index, int>>& newly_critical() const { return newly_critical_; }
   /// The damage fields of each of `cells` (in that order; every cell if empty).
   DamageFields fields(const RunState& state, std::span<const Index> cells = {}) const;
 
  private:
+  /// A growth of d at one point, with what it books in the ledger (computed
+  /// by the process that decides the point's cell, so that a piece of the
+  /// model books the points it does not hold too).
   struct Change {
-    std::size_t point;  ///< index into RunState::history
+    std::size_t point;  ///< index into RunState::history; kNotHeld on a piece that lacks its cell
+    std::size_t whole;  ///< the same in the whole model (whole-mesh cell × points + point)
     double d;           ///< the new value
+    double old;         ///< the value it replaces
     double Y;           ///< the damage force that drove it
     double volume;      ///< w |J| scale of the point
+    double dissipated;  ///< ∫ (k0 + k1 d) dd × volume, from old to d
+    bool critical;      ///< d ≥ d_c
   };
+  static constexpr std::size_t kNotHeld = static_cast<std::size_t>(-1);
   void ledger_move(RunState& state, const system::ConstrainedSystem& system,
                    std::span<const double> u_newton) const;
-  static std::vector<Change> gather_changes(const std::vector<Change>& mine);
+  std::vector<Change> gather_changes(const std::vector<Change>& mine) const;
   const setup::Discretization* disc_;  ///< non-owning: the run's current discretization
   double tolerance_ = 0.0;
   bool newton_ = false;

@@ -79,7 +79,11 @@ NonlinearSolver::NonlinearSolver(Matrix& J, Residual residual, Jacobian jacobian
       r_whole_(J.make_vector()) {
   PetscInt bs = 1;
   PM_PETSC(MatGetBlockSize(J_.handle(), &bs));
-  owned_ = OwnedDofs(J_.distribution().get(), static_cast<int>(bs), J_.rows());
+  // The assembly numbering's dofs: on a piece of the model, the piece's
+  // (Distribution::num_nodes), not the matrix's global rows.
+  const auto& distribution = J_.distribution();
+  owned_ = OwnedDofs(distribution.get(), static_cast<int>(bs),
+                     distribution ? distribution->num_nodes() * static_cast<Index>(bs) : J_.rows());
   PM_PETSC(SNESCreate(PETSC_COMM_WORLD, &snes_));
   PM_PETSC(SNESSetOptionsPrefix(snes_, options_prefix.c_str()));
   PM_PETSC(SNESSetType(snes_, SNESNEWTONLS));

@@ -5,6 +5,7 @@
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/run/checkpoint.hpp"
 #include "perimorph/setup/discretization.hpp"
+#include "perimorph/setup/piece_model.hpp"
 #include "perimorph/system/stiffness.hpp"
 
 #include <fmt/format.h>
@@ -233,15 +234,25 @@ void QuasiStaticRun::record(bool force_vtu) {
     const int npts = dm.points_per_cell;
     rec_.damaged_points = rec_.critical_points = 0;
     rec_.max_damage = 0.0;
+    // On a piece of the model, each process counts the cells of its part.
+    const auto* piece = disc_->piece.get();
     for (Index c = 0; c < disc_->mesh.num_cells(); ++c) {
       const int law = dm.law_of(c);
-      if (law < 0) continue;
+      if (law < 0 || (piece && piece->owner[static_cast<std::size_t>(c)] != piece->part)) continue;
       for (int q = 0; q < npts; ++q) {
         const double d = setup::DamageModel::at(state_.history, c, q, npts);
         rec_.damaged_points += d > 0.0;
         rec_.critical_points += d >= dm.laws[static_cast<std::size_t>(law)].d_c;
         rec_.max_damage = std::max(rec_.max_damage, d);
       }
+    }
+    if (piece) {
+      const std::vector<double> counts = la::sum_over_processes(
+          {static_cast<double>(rec_.damaged_points), static_cast<double>(rec_.critical_points)});
+      rec_.damaged_points = static_cast<std::size_t>(counts[0]);
+      rec_.critical_points = static_cast<std::size_t>(counts[1]);
+      const std::vector<double> largest = la::all_gather({rec_.max_damage});
+      rec_.max_damage = *std::max_element(largest.begin(), largest.end());
     }
   }
   if (fracture_) {

@@ -23,8 +23,7 @@ std::string resolve_output_directory(const casefile::CaseConfig& config, const R
 }
 
 bool runs_on_pieces(const setup::Discretization& part) {
-  const auto& config = part.config;
-  return !part.damage && !config.adaptivity.enabled;
+  return !part.config.adaptivity.enabled;
 }
 
 setup::Discretization process_part(const casefile::CaseConfig& config, const setup::PhaseCallback& on_phase) {

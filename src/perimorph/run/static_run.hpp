@@ -91,8 +91,9 @@ struct RunSummary {
 /// matrix-free, or a run with bond failure (its decisions and what they cut
 /// loose shared in whole-mesh cell numbers and dof names), with or without
 /// checkpoints and restarts (a checkpoint is written in the whole model's
-/// numbers: run::WholeState). Not with damage or [adaptivity]. Otherwise a
-/// distributed run goes on the part.
+/// numbers: run::WholeState), with or without local damage (each change of d
+/// gathered in whole-model points). Not with [adaptivity] (a rebuild for a
+/// grown α is made on a part). Otherwise a distributed run goes on the part.
 bool runs_on_pieces(const setup::Discretization& part);
 
 /// This process's part of the case's model: build_discretization with one

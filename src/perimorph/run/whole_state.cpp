@@ -46,7 +46,6 @@ bool WholeState::decides_cell(Index c) const {
 
 evolution::RunState WholeState::whole(const evolution::RunState& state,
                                       std::span<const double> owned_u) const {
-  PERIMORPH_ASSERT(state.history.empty(), "a run with damage does not go on pieces of the model");
   evolution::RunState out(*piece_);
   out.increment = state.increment;
   out.load_factor = state.load_factor;
@@ -98,7 +97,31 @@ evolution::RunState WholeState::whole(const evolution::RunState& state,
     if (const Index d = setup::dof_of_name(*piece_, state.held_dofs[k]); d >= 0 && owns_dof(d))
       held[k] = numbering_.whole_dofs_of({&d, 1})[0];
   out.held_dofs = from_owners(held);
+
+  // The damage history: each cell's points from the process that decides the cell.
+  if (!state.history.empty()) {
+    const std::size_t n = points_per_cell();
+    std::vector<double> damaged;
+    for (Index c = 0; c < piece_->mesh.num_cells(); ++c) {
+      if (!decides_cell(c)) continue;
+      const auto first = state.history.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(c) * n);
+      if (std::all_of(first, first + static_cast<std::ptrdiff_t>(n), [](double d) { return d == 0.0; }))
+        continue;
+      damaged.push_back(static_cast<double>(setup::global_cell(*piece_, c)));
+      damaged.insert(damaged.end(), first, first + static_cast<std::ptrdiff_t>(n));
+    }
+    const std::vector<double> gathered = la::all_gather(damaged);
+    out.history.assign(static_cast<std::size_t>(cells_) * n, 0.0);
+    for (std::size_t k = 0; k + n < gathered.size(); k += n + 1)
+      std::copy_n(
+          gathered.begin() + static_cast<std::ptrdiff_t>(k + 1), n,
+          out.history.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(gathered[k]) * n));
+  }
   return out;
+}
+
+std::size_t WholeState::points_per_cell() const {
+  return piece_->damage ? static_cast<std::size_t>(piece_->damage->points_per_cell) : 0;
 }
 
 evolution::RunState WholeState::empty_whole() const {
@@ -106,12 +129,11 @@ evolution::RunState WholeState::empty_whole() const {
   out.u.assign(static_cast<std::size_t>(numbering_.whole_dofs()), 0.0);
   out.num_cells = cells_;
   if (piece_->nonlocal) out.failed = bonds::BrokenBonds(cells_, piece_->nonlocal->points.per_cell);
-  out.history.clear();
+  out.history.assign(static_cast<std::size_t>(cells_) * points_per_cell(), 0.0);
   return out;
 }
 
 evolution::RunState WholeState::piece_of(const evolution::RunState& whole) const {
-  PERIMORPH_ASSERT(whole.history.empty(), "a run with damage does not go on pieces of the model");
   evolution::RunState out(*piece_);
   out.increment = whole.increment;
   out.load_factor = whole.load_factor;
@@ -139,6 +161,13 @@ evolution::RunState WholeState::piece_of(const evolution::RunState& whole) const
     if (const Index d = numbering_.piece_dofs_of({&whole.held_dofs[k], 1})[0]; d >= 0 && owns_dof(d))
       names[k] = setup::dof_name(*piece_, d);
   out.held_dofs = from_owners(names);
+  // The damage history of every cell of the piece (a cell of its halo shares
+  // nodes with, or bonds to, its part's).
+  if (const std::size_t n = points_per_cell(); n > 0)
+    for (Index c = 0; c < piece_->mesh.num_cells(); ++c)
+      std::copy_n(whole.history.begin() + static_cast<std::ptrdiff_t>(
+                                              static_cast<std::size_t>(setup::global_cell(*piece_, c)) * n),
+                  n, out.history.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(c) * n));
   return out;
 }
 

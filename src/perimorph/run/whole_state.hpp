@@ -9,7 +9,9 @@
 // bond is held by the process that decided it (the cells bonded to its part's
 // are in its piece). Its dissipation per cell is the whole model's on the
 // cells of its part (all their bonds are held, added in the same order), and
-// its held dofs are dof names (setup::dof_name), every process's alike.
+// its held dofs are dof names (setup::dof_name), every process's alike. Its
+// damage history is every cell's of its piece, each cell's updated alike on
+// every process that holds it (evolution::LocalDamage).
 // Every function is collective over PETSC_COMM_WORLD and O(whole model) on
 // every process where it gathers a whole list: the cost of the checkpoint's
 // own whole vectors, paid once a checkpoint.
@@ -37,25 +39,27 @@ class WholeState {
   /// The whole mesh's cell count.
   Index cells() const { return cells_; }
 
-  /// `state` (the piece's, without damage history) in the whole model's
-  /// numbers: u from `owned_u` (its values at the owned dofs, la::OwnedDofs
-  /// order), the failed bonds in the whole order of failure, D of every cell,
-  /// the held dofs as whole dofs. The BrokenBonds set is left empty (a
-  /// checkpoint writes the ordered list).
+  /// `state` (the piece's) in the whole model's numbers: u from `owned_u`
+  /// (its values at the owned dofs, la::OwnedDofs order), the failed bonds in
+  /// the whole order of failure, D of every cell, the held dofs as whole
+  /// dofs, the damage history of every cell. The BrokenBonds set is left
+  /// empty (a checkpoint writes the ordered list).
   evolution::RunState whole(const evolution::RunState& state, std::span<const double> owned_u) const;
   /// An initial state of the whole model, for evolution::restore_state to
-  /// read a checkpoint's into (u, D per cell and the failed-bond set sized
-  /// for the whole model).
+  /// read a checkpoint's into (u, D per cell, the failed-bond set and the
+  /// damage history sized for the whole model).
   evolution::RunState empty_whole() const;
   /// The piece's part of a whole state: u at the piece's dofs, the failed
   /// bonds whose two cells the piece holds (with their places), D of its
-  /// part's cells (the only ones it reads), the held dofs as names.
+  /// part's cells (the only ones it reads), the held dofs as names, the
+  /// damage history of its cells.
   evolution::RunState piece_of(const evolution::RunState& whole) const;
   /// Where the two points of each of a whole state's failed bonds are, in
   /// its order, on every process (each from the process that decided it).
   std::vector<std::pair<Vec3, Vec3>> failed_bond_points(const evolution::RunState& whole) const;
 
  private:
+  std::size_t points_per_cell() const;  ///< of the damage history (0 without damage)
   bool owns_dof(Index dof) const;
   bool decides_cell(Index c) const;
 
