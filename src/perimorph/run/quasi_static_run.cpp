@@ -238,7 +238,7 @@ void QuasiStaticRun::record(bool force_vtu) {
     const auto* piece = disc_->piece.get();
     for (Index c = 0; c < disc_->mesh.num_cells(); ++c) {
       const int law = dm.law_of(c);
-      if (law < 0 || (piece && piece->owner[static_cast<std::size_t>(c)] != piece->part)) continue;
+      if (law < 0 || (piece && !piece->of_part(c))) continue;
       for (int q = 0; q < npts; ++q) {
         const double d = setup::DamageModel::at(state_.history, c, q, npts);
         rec_.damaged_points += d > 0.0;

@@ -31,17 +31,11 @@ std::vector<Index> from_owners(const std::vector<Index>& mine) {
 
 WholeState::WholeState(const setup::Discretization& piece)
     : piece_(&piece), numbering_(piece.piece->dofs, piece.dim()) {
-  Index mine = 0;
-  for (int p : piece.piece->owner) mine += p == piece.piece->part ? 1 : 0;
-  cells_ = static_cast<Index>(la::sum_over_processes({static_cast<double>(mine)})[0]);
+  cells_ = static_cast<Index>(la::sum_over_processes({static_cast<double>(piece.piece->part_cells())})[0]);
 }
 
 bool WholeState::owns_dof(Index dof) const {
   return piece_->piece->dofs.owned[static_cast<std::size_t>(dof / piece_->dim())] != 0;
-}
-
-bool WholeState::decides_cell(Index c) const {
-  return piece_->piece->owner[static_cast<std::size_t>(c)] == piece_->piece->part;
 }
 
 evolution::RunState WholeState::whole(const evolution::RunState& state,
@@ -64,7 +58,7 @@ evolution::RunState WholeState::whole(const evolution::RunState& state,
   mine.reserve(state.failed_in_order.size() * kPacked);
   for (std::size_t k = 0; k < state.failed_in_order.size(); ++k) {
     const auto& id = state.failed_in_order[k];
-    if (!decides_cell(id.e)) continue;  // sent once, by the process that decided it
+    if (!piece_->piece->of_part(id.e)) continue;  // sent once, by the process that decided it
     mine.insert(mine.end(), {static_cast<double>(state.failed_place[k]),
                              static_cast<double>(setup::global_cell(*piece_, id.e)),
                              static_cast<double>(setup::global_cell(*piece_, id.f)),
@@ -85,7 +79,7 @@ evolution::RunState WholeState::whole(const evolution::RunState& state,
   // D per cell: each cell's from the process that decides it.
   std::vector<double> dissipated;
   for (const auto& [c, d] : state.cell_dissipated)
-    if (decides_cell(c))
+    if (piece_->piece->of_part(c))
       dissipated.insert(dissipated.end(), {static_cast<double>(setup::global_cell(*piece_, c)), d});
   const std::vector<double> every = la::all_gather(dissipated);
   for (std::size_t k = 0; k + 1 < every.size(); k += 2)
@@ -103,7 +97,7 @@ evolution::RunState WholeState::whole(const evolution::RunState& state,
     const std::size_t n = points_per_cell();
     std::vector<double> damaged;
     for (Index c = 0; c < piece_->mesh.num_cells(); ++c) {
-      if (!decides_cell(c)) continue;
+      if (!piece_->piece->of_part(c)) continue;
       const auto first = state.history.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(c) * n);
       if (std::all_of(first, first + static_cast<std::ptrdiff_t>(n), [](double d) { return d == 0.0; }))
         continue;
@@ -154,7 +148,7 @@ evolution::RunState WholeState::piece_of(const evolution::RunState& whole) const
   }
   out.failed_over_model = whole.failed_in_order.size();
   for (const auto& [c, d] : whole.cell_dissipated)
-    if (const Index lc = setup::local_cell(*piece_, c); lc >= 0 && decides_cell(lc))
+    if (const Index lc = setup::local_cell(*piece_, c); lc >= 0 && piece_->piece->of_part(lc))
       out.cell_dissipated[lc] = d;
   std::vector<Index> names(whole.held_dofs.size(), -1);
   for (std::size_t k = 0; k < names.size(); ++k)
@@ -179,7 +173,7 @@ std::vector<std::pair<Vec3, Vec3>> WholeState::failed_bond_points(const evolutio
     for (std::size_t k = 0; k < n; ++k) {
       const auto& id = whole.failed_in_order[k];
       const Index e = setup::local_cell(*piece_, id.e), f = setup::local_cell(*piece_, id.f);
-      if (e < 0 || f < 0 || !decides_cell(e)) continue;
+      if (e < 0 || f < 0 || !piece_->piece->of_part(e)) continue;
       const Vec3 g = bonds::point_position(piece_->mesh, pts, e, id.g),
                  h = bonds::point_position(piece_->mesh, pts, f, id.h);
       std::copy_n(g.data(), 3, mine.begin() + static_cast<std::ptrdiff_t>(6 * k));

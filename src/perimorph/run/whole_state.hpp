@@ -61,7 +61,6 @@ class WholeState {
  private:
   std::size_t points_per_cell() const;  ///< of the damage history (0 without damage)
   bool owns_dof(Index dof) const;
-  bool decides_cell(Index c) const;
 
   const setup::Discretization* piece_;
   system::WholeNumbering numbering_;

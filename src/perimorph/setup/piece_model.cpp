@@ -156,10 +156,13 @@ Index dof_of_name(const Discretization& disc, Index name) {
 
 std::vector<char> cells_of_process(const Discretization& disc, int processes, int process) {
   if (processes == 1 || !disc.piece) return partition::cells_of_part(disc.mesh, processes, process);
-  std::vector<char> mine;
-  mine.reserve(disc.piece->owner.size());
-  for (int o : disc.piece->owner) mine.push_back(o == disc.piece->part ? 1 : 0);
+  std::vector<char> mine(disc.piece->owner.size());
+  for (std::size_t c = 0; c < mine.size(); ++c) mine[c] = disc.piece->of_part(static_cast<Index>(c)) ? 1 : 0;
   return mine;
+}
+
+Index PieceNumbers::part_cells() const {
+  return static_cast<Index>(std::count(owner.begin(), owner.end(), part));
 }
 
 }  // namespace perimorph::setup

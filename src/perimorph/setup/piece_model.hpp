@@ -30,6 +30,11 @@ struct PieceNumbers {
   partition::PieceDofs dofs;
   /// The local number of global cell c, or -1 if the piece lacks it (a search).
   Index local_cell(Index c) const;
+  /// Whether local cell c is of the piece's process's part (the process
+  /// decides on it and writes it).
+  bool of_part(Index c) const { return owner[static_cast<std::size_t>(c)] == part; }
+  /// The cells of the part.
+  Index part_cells() const;
 };
 
 /// The whole-mesh number of cell c of `disc` (c itself but on a piece), and back
