@@ -253,6 +253,9 @@ int main(int argc, char** argv) {
   } catch (const perimorph::SolverError& e) {
     report("solver error: ", e.what(), false);
     return 3;
+  } catch (const perimorph::RunStopped& e) {
+    report("error: ", e.what(), false);
+    return 4;
   } catch (const std::exception& e) {
     report("error: ", e.what(), true);
     return 4;

@@ -127,8 +127,10 @@ run_asan() {
     'mpi_piece_runs_3_ranks'
     # the runs with bond failure or damage on pieces and their checkpoints, 3 processes
     # (five runs of each of four cases);
-    # the same test runs on 2 (mpi_piece_checkpoints_2_ranks)
+    # the same test runs on 2 (mpi_piece_checkpoints_2_ranks); and those of runs whose α
+    # grows, 3 processes (mpi_piece_adaptive_checkpoints_2_ranks runs on 2)
     'mpi_piece_checkpoints_3_ranks'
+    'mpi_piece_adaptive_checkpoints_3_ranks'
     # the mesh fuzz target's replay (not built, see above)
     'fuzz_corpus_replay_mesh'
     # the verification suite: python scripts running the program on reduced benchmark

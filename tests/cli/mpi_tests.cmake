@@ -75,9 +75,9 @@ cmp \"$4.info1\" \"$4.info2\"; cmp \"$4.gc1\" \"$4.gc2\"; grep -c 'G_c =' \"$4.g
   # distributed against PETSc's serial Cholesky, CHOLMOD or MUMPS: round-off),
   # 1e-8 for B6 (CG with a kept factor, rtol 1e-12). Elastic: plate_tension,
   # b2, b1, P4 at N = 20 (matrix-free, rtol 1e-8); bond failure: the fracture
-  # plate, B6 at h = 2δ/3 (these six on each process's piece of the model:
-  # run::runs_on_pieces); bond failure with adaptive α: the flagship; local
-# damage handing over to α and bond failure: B8 at h = δ/2 (the hole plate; on 3 processes by hand,
+  # plate, B6 at h = 2δ/3; bond failure with adaptive α: the flagship; local
+  # damage handing over to α and bond failure: B8 at h = δ/2 (each on the
+  # processes' pieces of the model, run::process_model; on 3 processes by hand,
   # docs/benchmarks/distributed-runs.md: 3 processes on CI's two cores take minutes).
   foreach(same "plate_tension/case.toml:2:1e-7" "plate_tension/case.toml:3:1e-7"
                "b2_plate_uniform_2d/case.toml:2:1e-10" "b1_ghost_forces_1d/case.toml:2:1e-7"
@@ -128,7 +128,7 @@ for d in two two_then_one one_then_two; do /usr/bin/python3 \"$3\" \"$4/one\" \"
     TIMEOUT 300)
 
   # The same for an elastic run, which goes on the processes' pieces of the
-  # model (run::runs_on_pieces): its checkpoint is written in the whole
+  # model (run::process_model): its checkpoint is written in the whole
   # model's numbering (system::WholeNumbering). plate_tension's checkpoint of
   # increment 3 written on 2 processes continues on 1 and on 3, one written on
   # 1 continues on 2, each the uninterrupted run on 1 within the Krylov
@@ -176,10 +176,17 @@ for d in two two_then_one two_then_three one_then_two; do /usr/bin/python3 \"$3\
   set(piece_checkpoints "PieceCheckpoint.*")
   foreach(ranks 2 3)
     add_test(NAME mpi_piece_checkpoints_${ranks}_ranks
-      COMMAND ${MPIEXEC_EXECUTABLE} -n ${ranks} $<TARGET_FILE:perimorph_mpi_tests> --gtest_filter=${piece_checkpoints})
+      COMMAND ${MPIEXEC_EXECUTABLE} -n ${ranks} $<TARGET_FILE:perimorph_mpi_tests>
+              --gtest_filter=PieceCheckpoint.RunsWithFailedBondsOrDamage*)
     # 12 s and 20 s; under ASan 148 s alone on 2 processes (and a heavier
     # version 545 s among the CI's parallel tests): the timeout leaves it room.
     set_tests_properties(mpi_piece_checkpoints_${ranks}_ranks PROPERTIES
+      ENVIRONMENT "${PM_MPI_ENV};OMP_NUM_THREADS=1" TIMEOUT 900)
+    # The same for runs whose α grows (pieces rebuilt with larger halos).
+    add_test(NAME mpi_piece_adaptive_checkpoints_${ranks}_ranks
+      COMMAND ${MPIEXEC_EXECUTABLE} -n ${ranks} $<TARGET_FILE:perimorph_mpi_tests>
+              --gtest_filter=PieceCheckpoint.RunsWithAdaptiveAlpha*)
+    set_tests_properties(mpi_piece_adaptive_checkpoints_${ranks}_ranks PROPERTIES
       ENVIRONMENT "${PM_MPI_ENV};OMP_NUM_THREADS=1" TIMEOUT 900)
   endforeach()
   foreach(ranks 1 2 3)

@@ -49,48 +49,13 @@ std::string checkpoint_bytes(const std::string& path) {
   return bytes;
 }
 
-// Runs with bond failure or local damage on the pieces against the runs on
-// the parts, and a checkpoint written after bonds failed, parts were held or
-// damage grew, on the parts and on the pieces, continued on the other and on
-// its own: the plate cut through in its band (a floating part, cells with
-// motions held: the held dofs written as whole dofs, read back as dof
-// names), the fracture plate (its crack started, more bonds failing after
-// the checkpoint), and the damage handover plate without its adaptive α
-// (damage alone, and damage with bonds that fail where it is critical:
-// each change of d gathered in whole-model points, the history of every
-// cell of a piece kept), all solved directly. Each run gives the run on the
-// parts' records (counts, energies, damage, crack area, iterations) and
-// failed-bond positions: the same bits on 2 processes, within 1e-10 on 3
-// (where the direct solve's sums come in another order, also after a
-// restart).
-TEST(PieceCheckpoint, RunsWithFailedBondsOrDamageContinueOnPartsAndPieces) {
+/// Each case run on the parts and on the pieces with a checkpoint after its
+/// second increment, each checkpoint continued on the other and on its own
+/// (comments of the tests below), in `root`.
+void expect_continued_alike(const std::vector<testing::NamedCase>& cases, const fs::path& root) {
   const int processes = la::world_size();
-  if (processes == 1) GTEST_SKIP() << "one process runs on the whole model";
-  const fs::path root =
-      fs::temp_directory_path() / ("perimorph_piece_checkpoint_fracture_" + std::to_string(processes));
   if (la::world_rank() == 0) fs::remove_all(root);
   (void)la::any_over_processes(false);
-  auto plate = testing::plate_cut_in_band();
-  plate.loading.factors = {0.5, 0.75, 1.0};
-  // A direct solve: a Krylov solve's preconditioner, kept across solves, is
-  // rebuilt on restart (run/checkpoint.hpp), which moves u at round-off.
-  plate.solver.petsc_options = "-ksp_type preonly -pc_type cholesky";
-  auto fracture_plate =
-      casefile::parse_case_file(std::string(PERIMORPH_SOURCE_DIR) + "/examples/fracture_plate_2d/case.toml");
-  // Its first two increments (451 bonds fail in the second), then λ = 0.07:
-  // 448 more (at its third, 0.1, 37 369 more, which made the test take 545 s
-  // of its 600 under AddressSanitizer).
-  fracture_plate.loading.factors = {1.0 / 30, 2.0 / 30, 0.07};
-  auto damaged = testing::handover_plate(3);
-  damaged.adaptivity.enabled = false;
-  damaged.fracture.enabled = false;
-  auto damaged_with_bonds = testing::handover_plate(3);
-  damaged_with_bonds.adaptivity.enabled = false;
-  damaged_with_bonds.alpha = testing::pulled_case(2, {}, 2.5e-3).alpha;
-  const std::vector<testing::NamedCase> cases = {{"plate cut free", plate},
-                                                 {"fracture plate", fracture_plate},
-                                                 {"damaged plate", damaged},
-                                                 {"damaged plate with bonds", damaged_with_bonds}};
   const bool bitwise = processes <= 2;
   for (auto [name, config] : cases) {
     SCOPED_TRACE(name);
@@ -101,12 +66,16 @@ TEST(PieceCheckpoint, RunsWithFailedBondsOrDamageContinueOnPartsAndPieces) {
     const fs::path on_part = root / name / "part", on_piece = root / name / "piece";
     const run::RunSummary part_run = run::run_static(part, {on_part.string(), true});
     const run::RunSummary piece_run = run::run_static(piece, {on_piece.string(), true});
+    ASSERT_EQ(config.loading.factors.size(), 3U);
     ASSERT_EQ(part_run.checkpoint_increment, 2);
     ASSERT_EQ(piece_run.checkpoint_increment, 2);
-    ASSERT_GT(part_run.history[1].bonds_broken + part_run.history[1].damaged_points,
-              0U);  // at the checkpoint
+    const auto& at_checkpoint = part_run.history[1];
+    ASSERT_GT(at_checkpoint.bonds_broken + at_checkpoint.damaged_points + at_checkpoint.alpha_balls, 0U);
+    if (config.adaptivity.enabled) {  // α grew before the checkpoint and after it
+      ASSERT_GT(at_checkpoint.alpha_balls, 0U);
+      ASSERT_GT(part_run.history.back().alpha_balls, at_checkpoint.alpha_balls);
+    }
     testing::expect_same_fracture_run(piece_run, part_run, bitwise);
-
     const int last = static_cast<int>(config.loading.factors.size());
     const run::RunSummary part_then_piece = continued(piece, on_part, root / name / "part_then_piece", last);
     const run::RunSummary piece_then_part = continued(part, on_piece, root / name / "piece_then_part", last);
@@ -142,6 +111,67 @@ TEST(PieceCheckpoint, RunsWithFailedBondsOrDamageContinueOnPartsAndPieces) {
     EXPECT_TRUE(checkpoint_bytes(part_then_piece.checkpoint_path) == then) << "parts then pieces";
     EXPECT_TRUE(checkpoint_bytes(piece_then_piece.checkpoint_path) == then) << "pieces then pieces";
   }
+}
+
+// Runs with bond failure or local damage on the pieces against the runs on
+// the parts, and a checkpoint written after bonds failed, parts were held or
+// damage grew, on the parts and on the pieces, continued on the other and on
+// its own: the plate cut through in its band (a floating part, cells with
+// motions held: the held dofs written as whole dofs, read back as dof
+// names), the fracture plate (its crack started, more bonds failing after
+// the checkpoint), and the damage handover plate without its adaptive α
+// (damage alone, and damage with bonds that fail where it is critical:
+// each change of d gathered in whole-model points, the history of every
+// cell of a piece kept), all solved directly. Each run gives the run on the
+// parts' records (counts, energies, damage, crack area, iterations) and
+// failed-bond positions: the same bits on 2 processes, within 1e-10 on 3
+// (where the direct solve's sums come in another order, also after a
+// restart).
+TEST(PieceCheckpoint, RunsWithFailedBondsOrDamageContinueOnPartsAndPieces) {
+  const int processes = la::world_size();
+  if (processes == 1) GTEST_SKIP() << "one process runs on the whole model";
+  auto plate = testing::plate_cut_in_band();
+  plate.loading.factors = {0.5, 0.75, 1.0};
+  // A direct solve: a Krylov solve's preconditioner, kept across solves, is
+  // rebuilt on restart (run/checkpoint.hpp), which moves u at round-off.
+  plate.solver.petsc_options = "-ksp_type preonly -pc_type cholesky";
+  auto fracture_plate =
+      casefile::parse_case_file(std::string(PERIMORPH_SOURCE_DIR) + "/examples/fracture_plate_2d/case.toml");
+  // Its first two increments (451 bonds fail in the second), then λ = 0.07:
+  // 448 more (at its third, 0.1, 37 369 more, which made the test take 545 s
+  // of its 600 under AddressSanitizer).
+  fracture_plate.loading.factors = {1.0 / 30, 2.0 / 30, 0.07};
+  auto damaged = testing::handover_plate(3);
+  damaged.adaptivity.enabled = false;
+  damaged.fracture.enabled = false;
+  auto damaged_with_bonds = testing::handover_plate(3);
+  damaged_with_bonds.adaptivity.enabled = false;
+  damaged_with_bonds.alpha = testing::pulled_case(2, {}, 2.5e-3).alpha;
+  expect_continued_alike(
+      {{"plate cut free", plate},
+       {"fracture plate", fracture_plate},
+       {"damaged plate", damaged},
+       {"damaged plate with bonds", damaged_with_bonds}},
+      fs::temp_directory_path() / ("perimorph_piece_checkpoint_fracture_" + std::to_string(processes)));
+}
+
+// The same for runs whose α grows (setup::rebuild_piece_for_alpha: each
+// piece rebuilt from its part, with a larger halo): the damage handover
+// plate (α grown where the damage is critical, bonds failing there) and the
+// flagship, the plate with a hole (α placed by the predictor before the
+// checkpoint, grown from failed bonds after it), the checkpoint of a grown α
+// continued on a piece rebuilt for it. The same balls, dofs, DG and
+// non-local cells and energy of the model's change besides.
+TEST(PieceCheckpoint, RunsWithAdaptiveAlphaContinueOnPartsAndPieces) {
+  const int processes = la::world_size();
+  if (processes == 1) GTEST_SKIP() << "one process runs on the whole model";
+  auto hole_plate =
+      casefile::parse_case_file(std::string(PERIMORPH_SOURCE_DIR) + "/examples/hole_plate_2d/case.toml");
+  hole_plate.loading.factors = {0.4, 0.64, 0.68};
+  hole_plate.solver.petsc_options = "-ksp_type preonly -pc_type cholesky";
+  expect_continued_alike(
+      {{"handover plate", testing::handover_plate(3)}, {"hole plate", hole_plate}},
+      fs::temp_directory_path() / ("perimorph_piece_checkpoint_adaptive_" + std::to_string(processes)));
 }
 
 }  // namespace

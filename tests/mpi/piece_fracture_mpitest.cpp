@@ -291,7 +291,6 @@ TEST(PieceFracture, RunsAsOnTheParts) {
     const run::RunOptions on_part{(root / name / "part").string(), true},
         on_piece{(root / name / "piece").string(), true};
     const setup::Discretization part = run::process_part(config);
-    ASSERT_TRUE(run::runs_on_pieces(part));
     const setup::Discretization piece = run::process_model(config);
     ASSERT_TRUE(piece.piece != nullptr);
     const run::RunSummary expected = run::run_static(part, on_part);

@@ -104,7 +104,6 @@ TEST(PieceRun, GivesTheRunOnThePartsBitForBit) {
         on_piece{(root / stem / "piece").string(), true};
     // This process's part of the whole model, as a run built it before it went on pieces.
     const setup::Discretization part = run::process_part(config);
-    ASSERT_TRUE(run::runs_on_pieces(part));
     const setup::Discretization piece = run::process_model(config);
     ASSERT_EQ(piece.piece != nullptr, la::world_size() > 1) << "cut to pieces on several processes only";
     if (!piece.piece) continue;

@@ -26,7 +26,8 @@ inline bool same_bits(const Vec3& a, const Vec3& b) {
 /// The records of a run with bond failure or damage (`got`) against
 /// another's (`expected`), increment by increment from `got`'s first: the
 /// same failed bonds, floating parts, cell mechanisms, damaged and critical
-/// points; the energies, largest damage, crack area and
+/// points, α's balls, dofs, DG and non-local cells; the energies (the
+/// ledger's model change too), largest damage, crack area and
 /// iteration counts the same bits where `bitwise`, else within 1e-10 of the
 /// largest of the record's energies (the areas of their own) and the
 /// iterations (and damage updates) within one. Then the failed bonds' positions, in the order
@@ -46,6 +47,10 @@ inline void expect_same_fracture_run(const run::RunSummary& got, const run::RunS
     EXPECT_EQ(a.cell_mechanisms, b.cell_mechanisms);
     EXPECT_EQ(a.damaged_points, b.damaged_points);
     EXPECT_EQ(a.critical_points, b.critical_points);
+    EXPECT_EQ(a.alpha_balls, b.alpha_balls);
+    EXPECT_EQ(a.dofs, b.dofs);
+    EXPECT_EQ(a.dg_cells, b.dg_cells);
+    EXPECT_EQ(a.nonlocal_cells, b.nonlocal_cells);
     EXPECT_LE(std::abs(a.damage_iterations - b.damage_iterations), bitwise ? 0 : 1);
     // The overshoot is a difference at round-off: scaled by the energies.
     const double energy = std::max({std::abs(b.external_work), std::abs(b.strain_energy),
@@ -57,6 +62,7 @@ inline void expect_same_fracture_run(const run::RunSummary& got, const run::RunS
           {a.damage_dissipated, b.damage_dissipated, energy},
           {a.max_damage, b.max_damage, 1.0},
           {a.overshoot, b.overshoot, energy},
+          {a.model_change, b.model_change, energy},
           {a.crack_area, b.crack_area, std::abs(b.crack_area)},
           {a.broken_face_area, b.broken_face_area, std::abs(b.broken_face_area)}}) {
       if (bitwise) {

@@ -37,6 +37,14 @@ class SolverError : public Error {
   using Error::Error;
 };
 
+/// A run stopped where it cannot go on (an increment that does not settle, a
+/// component that cannot go on), which every process of a distributed run
+/// meets at the same point with the same message: process 0 alone prints it.
+class RunStopped : public Error {
+ public:
+  using Error::Error;
+};
+
 /// Thrown on the other processes of a distributed run when process 0 met an
 /// error in what it alone does (la::on_process_zero): they stop where it
 /// stops, silently, with the exit status of its error (`output`: an

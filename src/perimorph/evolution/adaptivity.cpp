@@ -66,17 +66,24 @@ Adaptivity::Adaptivity(const setup::Discretization& disc, double s_crit) : disc_
   const double delta = disc.config.nonlocal.horizon;
   core_ = spec.core >= 0.0 ? spec.core : delta;
   transition_ = spec.transition >= 0.0 ? spec.transition : delta;
-  seeded_.assign(static_cast<std::size_t>(disc.mesh.num_cells()), 0);
   decides_ = setup::cells_of_process(disc, la::world_size(), la::world_rank());
 }
 
-void Adaptivity::propose(Index cell, int increment, bool predicted, bool critical_damage) {
-  char& seeded = seeded_[static_cast<std::size_t>(cell)];
-  if (seeded) return;
-  seeded = 1;
+bool Adaptivity::decides(Index c) const {
+  return decides_.empty() || decides_[static_cast<std::size_t>(c)] != 0;
+}
+
+bool Adaptivity::seeded(Index c) const {
+  return seeded_.contains(setup::global_cell(*disc_, c));
+}
+
+void Adaptivity::candidate(std::vector<Candidate>& out, int phase, double order, Index c, int increment,
+                           bool predicted, bool critical_damage) const {
   const mesh::Mesh& m = disc_->mesh;
-  proposed_.push_back({increment, cell, m.cell_centroid(cell), cell_size(m, cell) + core_, transition_,
-                       predicted, critical_damage});
+  out.push_back({phase,
+                 order,
+                 {increment, setup::global_cell(*disc_, c), m.cell_centroid(c), cell_size(m, c) + core_,
+                  transition_, predicted, critical_damage}});
 }
 
 bool Adaptivity::raises_alpha(const AlphaBall& b) const {
@@ -90,15 +97,12 @@ bool Adaptivity::raises_alpha(const AlphaBall& b) const {
   std::vector<Vec3> xp(static_cast<std::size_t>(pts.per_cell));
   std::vector<double> ap(xp.size());
   for (Index c = 0; c < m.num_cells(); ++c) {
+    if (!decides(c)) continue;
     const double reach = b.radius + b.transition + cell_size(m, c);
     if (distance(m.cell_centroid(c), b.center, dim) > reach) continue;
-    if (pts.holds(c)) {  // else (a process of a distributed run) recomputed: the same values
-      std::copy_n(pts.x.begin() + static_cast<std::ptrdiff_t>(pts.index(c, 0)), xp.size(), xp.begin());
-      std::copy_n(pts.alpha.begin() + static_cast<std::ptrdiff_t>(pts.index(c, 0)), ap.size(), ap.begin());
-    } else {
-      bonds::compute_cell_points(m, c, pts.rule, {}, pts.scale, nl.alpha, xp.data(), nullptr, ap.data(),
-                                 nullptr);
-    }
+    PERIMORPH_ASSERT(pts.holds(c), "the non-local points of a cell this process decides on");
+    std::copy_n(pts.x.begin() + static_cast<std::ptrdiff_t>(pts.index(c, 0)), xp.size(), xp.begin());
+    std::copy_n(pts.alpha.begin() + static_cast<std::ptrdiff_t>(pts.index(c, 0)), ap.size(), ap.begin());
     for (std::size_t q = 0; q < xp.size(); ++q)
       if (alpha::region_value(ball, xp[q], dim) > ap[q]) return true;
     for (std::size_t q = 0; q < nq; ++q) {
@@ -111,46 +115,59 @@ bool Adaptivity::raises_alpha(const AlphaBall& b) const {
   return false;
 }
 
+void Adaptivity::check_predictor_in_time(const RunState& state) {
+  // Every process holding a failed bond sees the same α at its cells; the
+  // first late one, by its place in the order of failure, names the cell.
+  const auto& points = disc_->nonlocal->points;
+  const auto& failed = state.failed_in_order;
+  std::vector<double> late;
+  for (std::size_t k = state.failed_after(checked_); k < failed.size() && late.empty(); ++k)
+    for (Index c : {failed[k].e, failed[k].f})
+      if (points.cell_alpha_min[static_cast<std::size_t>(c)] < 1.0 && late.empty()) {
+        const Vec3 x = disc_->mesh.cell_centroid(c);
+        const std::size_t place = state.failed_place.empty() ? k : state.failed_place[k];
+        late = {static_cast<double>(place), static_cast<double>(setup::global_cell(*disc_, c)), x.x(), x.y(),
+                x.z()};
+      }
+  checked_ = state.failed_over_model;
+  if (disc_->piece) late = la::all_gather(late);  // elsewhere every process holds every failed bond
+  if (late.empty()) return;
+  std::size_t first = 0;
+  for (std::size_t k = 5; k < late.size(); k += 5)
+    if (late[k] < late[first]) first = k;
+  const auto& spec = disc_->config.adaptivity;
+  throw Error(fmt::format(
+      "a bond failed in cell {} (centroid {:.4g}, {:.4g}, {:.4g}), where α < 1: the predictor was "
+      "late (the bond reached s_crit before the strain of a cell with α < 1 reached theta · s_crit = "
+      "{:g}). Lower [adaptivity] theta (now {}) or the load increments",
+      static_cast<Index>(late[first + 1]), late[first + 2], late[first + 3], late[first + 4],
+      spec.theta * s_crit_, spec.theta));
+}
+
 Proposal Adaptivity::inspect(const RunState& state, const system::ConstrainedSystem& /*system*/) {
   // Proposed cells are marked seeded at once; a proposal not applied is
-  // impossible (the run applies every non-quiet proposal).
+  // impossible (the run applies every non-quiet proposal). Each process
+  // finds the candidates among the cells it decides on (u and d are exact
+  // there), ordered as one process finds them: predictor hits, then critical
+  // damage, both in cell order, then the cells of the failed bonds in their
+  // order of failure; gathered, every process proposes the same balls.
   proposed_.clear();
   const auto& spec = disc_->config.adaptivity;
   const auto& points = disc_->nonlocal->points;
-  const auto& failed = state.failed_in_order;
+  std::vector<Candidate> mine;
+  const auto cells = disc_->mesh.num_cells();
   if (spec.predictor) {
-    for (; checked_ < failed.size(); ++checked_) {
-      const auto& id = failed[checked_];
-      for (Index c : {id.e, id.f})
-        if (points.cell_alpha_min[static_cast<std::size_t>(c)] < 1.0) {
-          const Vec3 x = disc_->mesh.cell_centroid(c);
-          throw Error(fmt::format(
-              "a bond failed in cell {} (centroid {:.4g}, {:.4g}, {:.4g}), where α < 1: the predictor was "
-              "late (the bond reached s_crit before the strain of a cell with α < 1 reached theta · s_crit = "
-              "{:g}). Lower [adaptivity] theta (now {}) or the load increments",
-              c, x.x(), x.y(), x.z(), spec.theta * s_crit_, spec.theta));
-        }
-    }
+    check_predictor_in_time(state);
     const double bar = spec.theta * s_crit_;
     const assembly::LocalSpace space = disc_->local_space();
-    // Each process tests the cells of its part (u is exact there); the hits,
-    // gathered and put in cell order, are proposed as on one process.
-    std::vector<double> hits;
-    for (Index c = 0; c < disc_->mesh.num_cells(); ++c) {
-      if (seeded_[static_cast<std::size_t>(c)] || points.cell_alpha_min[static_cast<std::size_t>(c)] >= 1.0 ||
-          (!decides_.empty() && decides_[static_cast<std::size_t>(c)] == 0))
-        continue;
+    for (Index c = 0; c < cells; ++c) {
+      if (!decides(c) || seeded(c) || points.cell_alpha_min[static_cast<std::size_t>(c)] >= 1.0) continue;
       for (const auto& q : disc_->rule)
         if (largest_principal_strain(assembly::strain_at(space, c, q.xi, state.u), disc_->dim()) > bar) {
-          hits.push_back(static_cast<double>(c));
+          candidate(mine, 0, static_cast<double>(setup::global_cell(*disc_, c)), c, state.increment, true);
           break;
         }
     }
-    if (!decides_.empty()) {
-      hits = la::all_gather(hits);
-      std::sort(hits.begin(), hits.end());
-    }
-    for (double c : hits) propose(static_cast<Index>(c), state.increment, true);
   }
   // allow_growth() opens one inspect: growth from failed bonds is due once.
   const bool grow = spec.update == casefile::AdaptivityUpdate::iteration || growth_due_;
@@ -159,28 +176,63 @@ Proposal Adaptivity::inspect(const RunState& state, const system::ConstrainedSys
     if (disc_->damage) {
       const setup::DamageModel& dm = *disc_->damage;
       const int npts = dm.points_per_cell;
-      for (Index c = 0; c < disc_->mesh.num_cells(); ++c) {
+      for (Index c = 0; c < cells; ++c) {
         const int law = dm.law_of(c);
-        if (law < 0 || seeded_[static_cast<std::size_t>(c)]) continue;
+        if (law < 0 || !decides(c) || seeded(c)) continue;
         const double d_c = dm.laws[static_cast<std::size_t>(law)].d_c;
         for (int q = 0; q < npts; ++q)
           if (setup::DamageModel::at(state.history, c, q, npts) >= d_c) {
-            propose(c, state.increment, false, true);
+            candidate(mine, 1, static_cast<double>(setup::global_cell(*disc_, c)), c, state.increment, false,
+                      true);
             break;
           }
       }
     }
-    for (; seen_ < failed.size(); ++seen_)
-      for (Index c : {failed[seen_].e, failed[seen_].f}) propose(c, state.increment, false);
+    // The bonds' places are below 2^53 / 2: exact as doubles.
+    const auto& failed = state.failed_in_order;
+    for (std::size_t k = state.failed_after(seen_); k < failed.size(); ++k) {
+      const double place = static_cast<double>(state.failed_place.empty() ? k : state.failed_place[k]);
+      for (int end = 0; end < 2; ++end)
+        if (const Index c = end == 0 ? failed[k].e : failed[k].f; decides(c) && !seeded(c))
+          candidate(mine, 2, 2.0 * place + end, c, state.increment, false);
+    }
+    seen_ = state.failed_over_model;
   }
+  for (const Candidate& k : gathered(std::move(mine), state.increment))
+    if (seeded_.insert(k.ball.cell).second) proposed_.push_back(k.ball);
   // A ball that raises α at no quadrature point leaves the discretization as
   // it is: it joins α without a rebuild (join_silent).
-  std::erase_if(proposed_, [&](const AlphaBall& b) {
-    if (raises_alpha(b)) return false;
-    silent_.push_back(b);
-    return true;
-  });
+  std::vector<char> raises(proposed_.size());
+  for (std::size_t k = 0; k < proposed_.size(); ++k) raises[k] = raises_alpha(proposed_[k]) ? 1 : 0;
+  if (!decides_.empty()) raises = la::union_over_processes(std::move(raises));
+  std::vector<AlphaBall> raising;
+  for (std::size_t k = 0; k < proposed_.size(); ++k) (raises[k] ? raising : silent_).push_back(proposed_[k]);
+  proposed_ = std::move(raising);
   return {proposed_.size()};
+}
+
+std::vector<Adaptivity::Candidate> Adaptivity::gathered(std::vector<Candidate> mine, int increment) const {
+  if (!decides_.empty()) {  // spread over processes: every process's, in the order of one
+    std::vector<double> flat;
+    for (const Candidate& k : mine) {
+      const AlphaBall& b = k.ball;
+      flat.insert(flat.end(), {static_cast<double>(k.phase), k.order, static_cast<double>(b.cell),
+                               b.center.x(), b.center.y(), b.center.z(), b.radius, b.predicted ? 1.0 : 0.0,
+                               b.critical_damage ? 1.0 : 0.0});
+    }
+    flat = la::all_gather(flat);
+    mine.clear();
+    for (std::size_t k = 0; k + 9 <= flat.size(); k += 9)
+      mine.push_back(
+          {static_cast<int>(flat[k]),
+           flat[k + 1],
+           {increment, static_cast<Index>(flat[k + 2]), Vec3(flat[k + 3], flat[k + 4], flat[k + 5]),
+            flat[k + 6], transition_, flat[k + 7] != 0.0, flat[k + 8] != 0.0}});
+  }
+  std::stable_sort(mine.begin(), mine.end(), [](const Candidate& a, const Candidate& b) {
+    return a.phase != b.phase ? a.phase < b.phase : a.order < b.order;
+  });
+  return mine;
 }
 
 void Adaptivity::join(std::vector<AlphaBall>& balls, RunState& state) {
@@ -206,6 +258,7 @@ void Adaptivity::join_silent(RunState& state) {
 void Adaptivity::rebind(const setup::Discretization& disc, RunState& /*state*/,
                         system::ConstrainedSystem& /*system*/) {
   disc_ = &disc;
+  decides_ = setup::cells_of_process(disc, la::world_size(), la::world_rank());  // a new piece: new cells
 }
 
 }  // namespace perimorph::evolution

@@ -15,6 +15,7 @@
 #include "perimorph/evolution/component.hpp"
 #include "perimorph/setup/discretization.hpp"
 
+#include <set>
 #include <vector>
 
 namespace perimorph::evolution {
@@ -68,23 +69,44 @@ class Adaptivity final : public Component {
   const std::vector<AlphaBall>& balls() const { return balls_; }
 
  private:
-  void propose(Index cell, int increment, bool predicted, bool critical_damage = false);
+  /// A ball a process found, with its place in the order one process finds
+  /// them (phase: 0 predictor, 1 critical damage, 2 failed bonds; order:
+  /// the whole cell, or 2 × the bond's place in the order of failure + its end).
+  struct Candidate {
+    int phase = 0;
+    double order = 0.0;
+    AlphaBall ball;
+  };
+  /// Whether this process decides on local cell c (decides_), and whether
+  /// the cell has its ball.
+  bool decides(Index c) const;
+  bool seeded(Index c) const;
+  /// Appends the ball of local cell c (its whole number in AlphaBall::cell).
+  void candidate(std::vector<Candidate>& out, int phase, double order, Index c, int increment, bool predicted,
+                 bool critical_damage = false) const;
+  /// Every process's candidates (collective where spread over processes), in order.
+  std::vector<Candidate> gathered(std::vector<Candidate> mine, int increment) const;
+  /// With the predictor, throws Error if a bond failed since the last check
+  /// in a cell whose α was below 1 (collective on a piece: the first such
+  /// bond in the order of failure is named on every process).
+  void check_predictor_in_time(const RunState& state);
   /// Adds `balls` to the state's α and to balls_; empties it.
   void join(std::vector<AlphaBall>& balls, RunState& state);
   /// True if the ball raises α at some non-local or local quadrature point
-  /// (a ball inside α = 1 changes nothing, and is not applied).
+  /// of a cell this process decides on (a ball inside α = 1 changes nothing,
+  /// and is not applied; the processes' answers are joined in inspect).
   bool raises_alpha(const AlphaBall& b) const;
 
   const setup::Discretization* disc_;  ///< non-owning: the run's current discretization
   double s_crit_ = 0.0;
   double core_ = 0.0, transition_ = 0.0;
   bool growth_due_ = false;
-  std::size_t seen_ = 0;      ///< failed bonds already grown from (RunState::failed_in_order)
-  std::size_t checked_ = 0;   ///< failed bonds already checked against α (predictor)
-  std::vector<char> seeded_;  ///< per cell: has its ball
-  /// The cells whose strain this process tests for the predictor
-  /// (partition::cells_of_part: each cell by one process, the hits gathered;
-  /// empty: every cell).
+  std::size_t seen_ = 0;     ///< failed bonds already grown from (RunState::failed_over_model)
+  std::size_t checked_ = 0;  ///< failed bonds already checked against α (predictor)
+  std::set<Index>
+      seeded_;  ///< the cells (whole-mesh numbers) with a ball: those of balls_, silent_, proposed_
+  /// The cells this process decides on (setup::cells_of_process: each cell by
+  /// one process, the candidates gathered; empty: every cell).
   std::vector<char> decides_;
   std::vector<AlphaBall> proposed_, silent_, balls_;
 };

@@ -19,9 +19,14 @@
 
 namespace perimorph::evolution {
 
-BondFailure::BondFailure(const setup::Discretization& disc)
-    : disc_(&disc), s_crit_(setup::critical_stretch(disc)) {
+BondFailure::BondFailure(const setup::Discretization& disc) : s_crit_(setup::critical_stretch(disc)) {
+  bind(disc);
+}
+
+void BondFailure::bind(const setup::Discretization& disc) {
+  disc_ = &disc;
   const auto& regions = disc.config.fracture.no_fail;
+  no_fail_.clear();
   if (!regions.empty()) no_fail_.assign(static_cast<std::size_t>(disc.mesh.num_cells()), 0);
   for (const std::string& region : regions)
     for (Index c : disc.mesh.cell_sets.at(region)) no_fail_[static_cast<std::size_t>(c)] = 1;

@@ -62,10 +62,10 @@ class BondFailure final : public Component {
   Effect apply(RunState& state, system::ConstrainedSystem& system) override;
   void rebind(const setup::Discretization& disc, RunState& /*state*/,
               system::ConstrainedSystem& /*system*/) override {
-    disc_ = &disc;
+    bind(disc);
   }
   /// Nothing is kept between increments but the discretization.
-  void restore(const setup::Discretization& disc, core::BinaryReader& /*in*/) override { disc_ = &disc; }
+  void restore(const setup::Discretization& disc, core::BinaryReader& /*in*/) override { bind(disc); }
 
   /// The bonds proposed by the last inspect (what the last apply broke), and
   /// where their points are (on a piece of the model, the points of bonds it
@@ -132,6 +132,8 @@ class BondFailure final : public Component {
   CrackArea crack_area(const RunState& state) const;
 
  private:
+  /// Onto `disc` (a rebuilt piece numbers its cells anew): its no-fail and decided cells.
+  void bind(const setup::Discretization& disc);
   /// The interfaces all of whose bonds have failed, in cell order, on every
   /// process (each process finds those of its cells e; collective); on
   /// several processes in whole-mesh cell numbers.

@@ -5,7 +5,9 @@
 #include "perimorph/evolution/adaptivity.hpp"
 #include "perimorph/evolution/local_damage.hpp"
 #include "perimorph/evolution/part_support.hpp"
+#include "perimorph/la/petsc_session.hpp"
 #include "perimorph/setup/discretization.hpp"
+#include "perimorph/setup/piece_model.hpp"
 
 #include <fmt/format.h>
 
@@ -230,7 +232,6 @@ void Adaptivity::save(core::BinaryWriter& out) const {
   out.put<char>(growth_due_);
   out.put<std::uint64_t>(seen_);
   out.put<std::uint64_t>(checked_);
-  out.put_vector(seeded_);
   save_balls(out, silent_);
   save_balls(out, balls_);
 }
@@ -241,12 +242,13 @@ void Adaptivity::restore(const setup::Discretization& disc, core::BinaryReader& 
   growth_due_ = in.get<char>() != 0;
   seen_ = in.get<std::uint64_t>();
   checked_ = in.get<std::uint64_t>();
-  std::vector<char> seeded = in.get_vector<char>();
-  check_size(in, seeded, seeded_.size(), "seeded cells");
-  seeded_ = std::move(seeded);
   silent_ = restore_balls(in);
   balls_ = restore_balls(in);
   proposed_.clear();
+  decides_ = setup::cells_of_process(disc, la::world_size(), la::world_rank());
+  seeded_.clear();
+  for (const auto* balls : {&silent_, &balls_})
+    for (const AlphaBall& b : *balls) seeded_.insert(b.cell);
 }
 
 void PartSupport::save(core::BinaryWriter& out) const {
@@ -296,6 +298,7 @@ void LocalDamage::save(core::BinaryWriter& out) const {
 void LocalDamage::restore(const setup::Discretization& disc, core::BinaryReader& in) {
   in.expect("local damage");
   disc_ = &disc;
+  decides_ = setup::cells_of_process(disc, la::world_size(), la::world_rank());
   newton_steps_ = in.get<int>();
   newton_failures_ = in.get<int>();
   newton_failed_in_ = in.get<int>();

@@ -92,6 +92,12 @@ LocalDamage::LocalDamage(const setup::Discretization& disc)
   PERIMORPH_ASSERT(disc.damage.has_value(), "LocalDamage needs a damage model");
 }
 
+void LocalDamage::rebind(const setup::Discretization& disc, RunState& /*state*/,
+                         system::ConstrainedSystem& /*system*/) {
+  disc_ = &disc;
+  decides_ = setup::cells_of_process(disc, la::world_size(), la::world_rank());  // a new piece: new cells
+}
+
 Proposal LocalDamage::inspect(const RunState& state, const system::ConstrainedSystem& /*system*/) {
   proposed_.clear();
   largest_ = 0.0;

@@ -45,9 +45,7 @@ class LocalDamage final : public Component {
   /// increment (newton_failures counts it).
   Effect apply(RunState& state, system::ConstrainedSystem& system) override;
   void rebind(const setup::Discretization& disc, RunState& /*state*/,
-              system::ConstrainedSystem& /*system*/) override {
-    disc_ = &disc;
-  }
+              system::ConstrainedSystem& /*system*/) override;
   /// The Newton counters and the last change (local_damage_checkpoint.cpp).
   void save(core::BinaryWriter& out) const override;
   void restore(const setup::Discretization& disc, core::BinaryReader& in) override;

@@ -5,7 +5,9 @@
 #include "perimorph/core/error.hpp"
 #include "perimorph/io/progress.hpp"
 #include "perimorph/run/quasi_static_run.hpp"
+#include "perimorph/run/whole_state.hpp"
 #include "perimorph/setup/boundary_conditions.hpp"
+#include "perimorph/setup/piece_model.hpp"
 #include "perimorph/system/remodel.hpp"
 
 #include <chrono>
@@ -59,15 +61,22 @@ void QuasiStaticRun::rebuild() {
   const auto t0 = std::chrono::steady_clock::now();
   progress_->phase("remodel");
   const double before_energy = strain_energy();
-  // Carried over whole (from the owners where a process holds its halo only).
-  const std::vector<double> u_whole = whole(state_.u), u_prev_whole = owned_dofs_.whole(u_prev_);
-  auto next = std::make_unique<setup::Discretization>(setup::rebuild_for_alpha(*disc_, state_.alpha));
-  system::Remodelled r =
-      system::remodel(*system_, *disc_, *next, &state_.failed, setup::build_dirichlet(*next),
-                      setup::build_external_force(*next), state_.history);
-  state_.u = system::transfer_dof_vector(*disc_, *next, u_whole);
-  std::vector<double> u_prev_next = system::transfer_dof_vector(*disc_, *next, u_prev_whole);
-  system_ = std::move(r.system);
+  std::unique_ptr<setup::Discretization> next;
+  std::vector<double> u_prev_next;
+  if (disc_->piece) {
+    next = std::make_unique<setup::Discretization>(setup::rebuild_piece_for_alpha(*disc_, state_.alpha));
+    u_prev_next = move_to_piece(*next);
+  } else {
+    // Carried over whole (from the owners where a process holds its halo only).
+    const std::vector<double> u_whole = whole(state_.u), u_prev_whole = owned_dofs_.whole(u_prev_);
+    next = std::make_unique<setup::Discretization>(setup::rebuild_for_alpha(*disc_, state_.alpha));
+    system::Remodelled r =
+        system::remodel(*system_, *disc_, *next, &state_.failed, setup::build_dirichlet(*next),
+                        setup::build_external_force(*next), state_.history);
+    state_.u = system::transfer_dof_vector(*disc_, *next, u_whole);
+    u_prev_next = system::transfer_dof_vector(*disc_, *next, u_prev_whole);
+    system_ = std::move(r.system);
+  }
   system_->attach_solver();
   setup_.sets = setup::reaction_sets(*next);
   disc_ = next.get();
@@ -88,6 +97,25 @@ void QuasiStaticRun::rebuild() {
   }
   system_->operator_changed();
   remodel_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::vector<double> QuasiStaticRun::move_to_piece(const setup::Discretization& next) {
+  // The state in the whole model's numbers (as a checkpoint holds it), u
+  // carried on the source parts' whole dof maps, then cut to the next piece,
+  // whose halo may hold more failed bonds and damaged cells than this one's.
+  const WholeState was(*disc_), now(next);
+  evolution::RunState whole_state = was.whole(state_, owned_dofs_.of(state_.u));
+  const setup::Discretization &from = disc_->source->part, &to = next.source->part;
+  whole_state.u = system::transfer_dof_vector(from, to, whole_state.u);
+  whole_state.held_dofs.clear();  // held anew on the next system (PartSupport::rebind)
+  const std::vector<double> u_prev = system::transfer_dof_vector(from, to, was.numbering().whole(u_prev_));
+  evolution::RunState next_state = now.piece_of(whole_state);
+  system::Remodelled r = system::remodel_piece(*system_, *disc_, was.numbering(), next, now.numbering(),
+                                               &next_state.failed, setup::build_dirichlet(next),
+                                               setup::build_external_force(next), next_state.history);
+  state_ = std::move(next_state);
+  system_ = std::move(r.system);
+  return now.numbering().piece_of(u_prev);
 }
 
 }  // namespace perimorph::run

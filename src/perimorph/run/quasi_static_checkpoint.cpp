@@ -90,9 +90,11 @@ void QuasiStaticRun::restore(const std::string& path, const RunOptions& /*option
   alpha::AlphaField alpha = evolution::restore_alpha(in);
   if (alpha.region_list().size() != state_.alpha.region_list().size() ||
       alpha.constant_value() != state_.alpha.constant_value()) {
-    if (disc_->piece)
-      in.fail("a grown alpha, which a run on pieces of the model cannot rebuild (run::runs_on_pieces)");
-    owned_ = std::make_unique<setup::Discretization>(setup::rebuild_for_alpha(*disc_, alpha));
+    if (disc_->piece && !disc_->source)
+      in.fail("a grown alpha, where the case has no [adaptivity] (a piece without its part to rebuild from)");
+    owned_ =
+        std::make_unique<setup::Discretization>(disc_->piece ? setup::rebuild_piece_for_alpha(*disc_, alpha)
+                                                             : setup::rebuild_for_alpha(*disc_, alpha));
     disc_ = owned_.get();
   }
   // On a piece, the checkpoint's vectors are the whole model's (save_checkpoint).

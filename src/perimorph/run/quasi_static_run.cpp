@@ -267,13 +267,19 @@ void QuasiStaticRun::record(bool force_vtu) {
   }
   if (adaptivity_) {
     const auto& nl = *disc_->nonlocal;
-    rec_.dofs = disc_->dofmap.num_dofs();
-    rec_.dg_cells = 0;
-    rec_.nonlocal_cells = 0;
+    // On a piece, counted over its part's cells and summed over the processes.
+    double dg = 0.0, nonlocal = 0.0;
     for (Index c = 0; c < disc_->mesh.num_cells(); ++c) {
-      rec_.dg_cells += disc_->dofmap.continuity(c) != dofs::Continuity::continuous;
-      rec_.nonlocal_cells += nl.points.cell_alpha_max[static_cast<std::size_t>(c)] > 0.0;
+      if (disc_->piece && !disc_->piece->of_part(c)) continue;
+      dg += disc_->dofmap.continuity(c) != dofs::Continuity::continuous ? 1.0 : 0.0;
+      nonlocal += nl.points.cell_alpha_max[static_cast<std::size_t>(c)] > 0.0 ? 1.0 : 0.0;
     }
+    const std::vector<double> counts =
+        disc_->piece ? la::sum_over_processes({static_cast<double>(owned_dofs_.size()), dg, nonlocal})
+                     : std::vector<double>{static_cast<double>(disc_->dofmap.num_dofs()), dg, nonlocal};
+    rec_.dofs = static_cast<Index>(counts[0]);
+    rec_.dg_cells = static_cast<Index>(counts[1]);
+    rec_.nonlocal_cells = static_cast<Index>(counts[2]);
     rec_.alpha_balls = adaptivity_->balls().size();
     rec_.model_change = state_.energy.model_change;
     rec_.remodel_seconds = remodel_seconds_;
@@ -314,7 +320,7 @@ void QuasiStaticRun::write_vtu(int increment, bool listed_by_row) {
   if (!output_->writes_vtu()) return;
   // Collective on several processes: each writes its piece (RunOutput).
   const std::span<const Index> cells = output_->cells_written(*disc_);
-  output_->write_increment_vtu(*disc_, increment, state_.load_factor, state_.u,
+  output_->write_increment_vtu(*disc_, cells, increment, state_.load_factor, state_.u,
                                fracture_ ? fracture_->fields(state_, cells) : evolution::FractureFields{},
                                damage_ ? damage_->fields(state_, cells) : evolution::DamageFields{},
                                listed_by_row);

@@ -140,6 +140,10 @@ class QuasiStaticRun {
   /// components rebound, the strain-energy change booked in the ledger
   /// (quasi_static_adapt.cpp).
   void rebuild();
+  /// On a piece: the state carried to `next` (the piece rebuilt for the
+  /// state's α) and the system remodelled onto it (system::remodel_piece);
+  /// returns u_prev_ carried to next's numbering (piece-length).
+  std::vector<double> move_to_piece(const setup::Discretization& next);
 
   const setup::Discretization* disc_;             ///< the current one: the caller's (non-owning) or owned_
   std::unique_ptr<setup::Discretization> owned_;  ///< rebuilt for a grown α (null before)

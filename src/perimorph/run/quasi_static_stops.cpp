@@ -50,7 +50,7 @@ void QuasiStaticRun::stop_unsettled(std::size_t over) {
   const std::string files = output.writes_vtu()
                                 ? fmt::format("{} and its row in {}", output.vtu_path(i), output.csv_path())
                                 : fmt::format("its row in {} ([output] vtu = false)", output.csv_path());
-  throw Error(fmt::format(
+  throw RunStopped(fmt::format(
       "increment {}/{} (load factor {}): bonds still fail after {} bond-breaking iterations: {} "
       "bonds "
       "failed in this increment and {} more are over the criterion now. The crack is running "
@@ -95,7 +95,7 @@ void QuasiStaticRun::stop_unsupported(const std::exception& e) {
   progress_->finish();
   const int i = state_.increment;
   write_vtu(i);
-  throw Error(
+  throw RunStopped(
       fmt::format("increment {}/{} (load factor {}), iteration {}: {}. The displacement "
                   "before this iteration is written as increment {} ({}); {}",
                   i, increments(), state_.load_factor, rec_.break_iterations, e.what(), i,
@@ -135,7 +135,7 @@ void QuasiStaticRun::stop_damage_unsettled() {
   progress_->finish();
   const int i = state_.increment;
   const int n = disc_->config.damage.max_iterations;
-  throw Error(fmt::format(
+  throw RunStopped(fmt::format(
       "increment {}/{} (load factor {}): the damage still changes by {:.3g} (tolerance {:g}) after {} "
       "consecutive fixed-point iterations: the local damage does not settle at this load (a snap-back, or a "
       "load step too large for the secant iteration). Use smaller load increments, or raise [damage] "

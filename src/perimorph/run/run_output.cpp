@@ -111,7 +111,8 @@ std::string RunOutput::failures_csv_path() const {
 
 std::span<const Index> RunOutput::cells_written(const setup::Discretization& model) {
   const int processes = la::world_size();
-  if (processes > 1 && piece_cells_.empty()) {
+  piece_cells_.clear();
+  if (processes > 1) {
     const std::vector<char> mine = setup::cells_of_process(model, processes, la::world_rank());
     for (Index c = 0; c < model.mesh.num_cells(); ++c)
       if (mine[static_cast<std::size_t>(c)]) piece_cells_.push_back(c);
@@ -119,8 +120,9 @@ std::span<const Index> RunOutput::cells_written(const setup::Discretization& mod
   return piece_cells_;
 }
 
-void RunOutput::write_increment_vtu(const setup::Discretization& model, int increment, double load_factor,
-                                    std::span<const double> u, const evolution::FractureFields& fracture,
+void RunOutput::write_increment_vtu(const setup::Discretization& model, std::span<const Index> cells,
+                                    int increment, double load_factor, std::span<const double> u,
+                                    const evolution::FractureFields& fracture,
                                     const evolution::DamageFields& damage, bool listed_by_row) {
   if (!vtu_) return;
   const int processes = la::world_size();
@@ -130,7 +132,6 @@ void RunOutput::write_increment_vtu(const setup::Discretization& model, int incr
     // Each process writes the cells of its part (the bisection of the
     // stretch pass), then process 0 the index. A failure anywhere removes
     // every process's piece.
-    const std::span<const Index> cells = cells_written(model);
     const std::string stem = fmt::format("{}_{:04d}", basename_, increment);
     const std::string mine =
         (std::filesystem::path(directory_) / piece_name(stem, la::world_rank())).string();

@@ -80,13 +80,14 @@ class RunOutput {
 
   /// Writes the increment's VTU and lists it in the PVD; with `listed_by_row`
   /// the PVD entry waits for add_row (below). On P > 1 processes collective:
-  /// each process writes the cells of its part (partition::cells_of_part) as
+  /// each process writes `cells`, those of its part (cells_written), as
   /// BASENAME_NNNN_pR.vtu, with a cell array `cell` (the cell's number in the
   /// whole mesh), and process 0 the index BASENAME_NNNN.pvtu listed in the
   /// PVD (issue 17, item 3); an error on any process stops every process
   /// (la::on_every_process) and leaves no piece of that increment.
-  void write_increment_vtu(const setup::Discretization& model, int increment, double load_factor,
-                           std::span<const double> u, const evolution::FractureFields& fracture = {},
+  void write_increment_vtu(const setup::Discretization& model, std::span<const Index> cells, int increment,
+                           double load_factor, std::span<const double> u,
+                           const evolution::FractureFields& fracture = {},
                            const evolution::DamageFields& damage = {}, bool listed_by_row = false);
   /// The increment's CSV row, then the PVD entry of a VTU written with
   /// listed_by_row: in this order (after the VTU file) the files stay in step
@@ -125,7 +126,8 @@ class RunOutput {
   /// The cells this process writes in an increment's VTU, ascending: on P > 1
   /// processes those of its part (partition::cells_of_part), on one empty
   /// (every cell). The fields passed to write_increment_vtu are theirs, in
-  /// this order.
+  /// this order. Found anew for each model (a piece rebuilt for a grown α
+  /// numbers its cells anew); valid until the next call.
   std::span<const Index> cells_written(const setup::Discretization& model);
 
  private:
@@ -137,7 +139,7 @@ class RunOutput {
   /// A VTU written with listed_by_row, waiting for its row: time and file name.
   std::optional<io::PvdCollection::Entry> unlisted_;
   std::unique_ptr<io::PvdCollection> pvd_;
-  /// This process's cells in a distributed run's VTU pieces (empty until the first).
+  /// This process's cells in a distributed run's VTU pieces (cells_written).
   std::vector<Index> piece_cells_;
 
   /// The increment's grid: every cell, or the cells `listed` (ascending),

@@ -22,10 +22,6 @@ std::string resolve_output_directory(const casefile::CaseConfig& config, const R
   return (std::filesystem::path(config.path).parent_path() / dir).lexically_normal().string();
 }
 
-bool runs_on_pieces(const setup::Discretization& part) {
-  return !part.config.adaptivity.enabled;
-}
-
 setup::Discretization process_part(const casefile::CaseConfig& config, const setup::PhaseCallback& on_phase) {
   // Each process computes the morphed C and the CG/DG flags of the cells near its part only.
   return setup::build_discretization(config, on_phase,
@@ -38,10 +34,15 @@ setup::Discretization process_model(const casefile::CaseConfig& config,
                                     const setup::PhaseCallback& on_phase) {
   const int processes = la::world_size(), rank = la::world_rank();
   setup::Discretization part = process_part(config, on_phase);
-  if (processes == 1 || !runs_on_pieces(part)) return part;
+  if (processes == 1) return part;
   if (on_phase) on_phase("piece");
-  const std::vector<int> owner = partition::coordinate_bisection(part.mesh, processes).owner;
-  return setup::cut_to_piece(part, owner, rank, la::any_over_processes);
+  std::vector<int> owner = partition::coordinate_bisection(part.mesh, processes).owner;
+  setup::Discretization piece = setup::cut_to_piece(part, owner, rank, la::any_over_processes);
+  // A rebuild for a grown α starts from the part (setup::rebuild_piece_for_alpha).
+  if (config.adaptivity.enabled)
+    piece.source =
+        std::make_shared<const setup::PieceSource>(setup::PieceSource{std::move(part), std::move(owner)});
+  return piece;
 }
 
 RunSetup prepare_run(const setup::Discretization& disc) {

@@ -85,17 +85,6 @@ struct RunSummary {
   std::string output_directory, csv_path, pvd_path;
 };
 
-/// Whether a run of `part` (the case's model or part of it) can go on each
-/// process's piece of the model (setup::cut_to_piece), where nothing as long
-/// as the whole model is kept after the set-up: an elastic run, assembled or
-/// matrix-free, or a run with bond failure (its decisions and what they cut
-/// loose shared in whole-mesh cell numbers and dof names), with or without
-/// checkpoints and restarts (a checkpoint is written in the whole model's
-/// numbers: run::WholeState), with or without local damage (each change of d
-/// gathered in whole-model points). Not with [adaptivity] (a rebuild for a
-/// grown α is made on a part). Otherwise a distributed run goes on the part.
-bool runs_on_pieces(const setup::Discretization& part);
-
 /// This process's part of the case's model: build_discretization with one
 /// part per process of PETSC_COMM_WORLD (the CG/DG flags shared by their
 /// union over the processes); the whole model on one. `on_phase` hears each
@@ -103,8 +92,14 @@ bool runs_on_pieces(const setup::Discretization& part);
 setup::Discretization process_part(const casefile::CaseConfig& config,
                                    const setup::PhaseCallback& on_phase = {});
 
-/// The model this process runs: its process_part, cut to its piece
-/// (setup::cut_to_piece) where runs_on_pieces, the part dropped. Collective.
+/// The model this process runs: on several processes, its process_part cut
+/// to its piece (setup::cut_to_piece), where nothing as long as the whole model
+/// is kept after the set-up: its failed bonds, damage changes and what they
+/// cut loose are shared in whole-mesh cell numbers and dof names, and a
+/// checkpoint is written in the whole model's numbers (run::WholeState). With
+/// [adaptivity], the part is kept as the piece's source, from which a rebuild
+/// for a grown α cuts the next piece (setup::rebuild_piece_for_alpha); without,
+/// it is dropped. On one process the whole model. Collective.
 setup::Discretization process_model(const casefile::CaseConfig& config,
                                     const setup::PhaseCallback& on_phase = {});
 

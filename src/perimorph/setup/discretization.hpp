@@ -21,6 +21,7 @@
 namespace perimorph::setup {
 
 struct PieceNumbers;  // piece_model.hpp
+struct PieceSource;   // piece_model.hpp
 
 struct Discretization {
   casefile::CaseConfig config;
@@ -59,6 +60,10 @@ struct Discretization {
   /// nodes and dof nodes are in the whole model, and the part of each cell.
   /// Null for a mesh that is the whole model's.
   std::shared_ptr<const PieceNumbers> piece{};
+  /// On a process's piece of a run with [adaptivity]: the part it was cut
+  /// from, kept for a rebuild for a grown α (rebuild_piece_for_alpha). Null
+  /// otherwise.
+  std::shared_ptr<const PieceSource> source{};
 
   int dim() const { return mesh.dim(); }
   assembly::LocalSpace local_space() const { return {mesh, dofmap, rule, scale}; }

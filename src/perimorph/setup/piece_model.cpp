@@ -126,6 +126,16 @@ Discretization cut_to_piece(const Discretization& part, std::span<const int> own
   return disc;
 }
 
+Discretization rebuild_piece_for_alpha(const Discretization& piece, alpha::AlphaField alpha) {
+  PERIMORPH_ASSERT(piece.piece && piece.source, "rebuild_piece_for_alpha needs a piece with its source part");
+  auto source = std::make_shared<PieceSource>(
+      PieceSource{rebuild_for_alpha(piece.source->part, std::move(alpha)), piece.source->owner});
+  Discretization next =
+      cut_to_piece(source->part, source->owner, piece.piece->part, piece.any_over_processes);
+  next.source = std::move(source);
+  return next;
+}
+
 Index PieceNumbers::local_cell(Index c) const {
   const auto it = std::lower_bound(global_cell.begin(), global_cell.end(), c);
   return it != global_cell.end() && *it == c ? static_cast<Index>(it - global_cell.begin()) : -1;

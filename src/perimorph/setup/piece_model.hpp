@@ -37,6 +37,12 @@ struct PieceNumbers {
   Index part_cells() const;
 };
 
+/// What a piece of a run with [adaptivity] is cut from (Discretization::source).
+struct PieceSource {
+  Discretization part;     ///< the process's part: build_discretization with a ModelPart, share_flags kept
+  std::vector<int> owner;  ///< the part of every cell of the whole mesh
+};
+
 /// The whole-mesh number of cell c of `disc` (c itself but on a piece), and back
 /// (-1 where a piece lacks it).
 Index global_cell(const Discretization& disc, Index c);
@@ -62,6 +68,14 @@ Index dof_of_name(const Discretization& disc, Index name);
 /// to be its part's node neighbours (build_discretization's, cells_near_part).
 Discretization cut_to_piece(const Discretization& part, std::span<const int> owner, int part_number,
                             std::function<bool(bool)> any_over_processes);
+
+/// The piece of `piece`'s process for α replaced by `alpha` (THEORY §5: α
+/// grows during a run): its source part rebuilt (rebuild_for_alpha, collective:
+/// the parts share their CG/DG flags) and cut anew (cut_to_piece), with the
+/// same parts. Its halo grows with α (the bonds of the cells α reached reach
+/// further). The new part is kept as the new piece's source. Requires a piece
+/// with a source (Discretization::source).
+Discretization rebuild_piece_for_alpha(const Discretization& piece, alpha::AlphaField alpha);
 
 /// The cells of `disc` this process decides on (bond failure, damage,
 /// adaptive α, floating parts) and writes, marked 1: on a piece those of its

@@ -5,6 +5,7 @@
 #include "perimorph/assembly/nonlocal_assembly.hpp"
 #include "perimorph/assembly/sparsity.hpp"
 #include "perimorph/core/error.hpp"
+#include "perimorph/setup/piece_model.hpp"
 #include "perimorph/system/stiffness.hpp"
 
 #include <algorithm>
@@ -28,13 +29,16 @@ bool same_cell_dofs(const dofs::DofMap& a, const dofs::DofMap& b, Index c) {
 /// The reference diagonal carried over (`reference`, whole-length: from
 /// transfer_dof_vector, max), the new system's own where nothing carries over
 /// and on prescribed dofs.
-void carry_reference(ConstrainedSystem& system, const std::vector<double>& reference) {
+void carry_owned_reference(ConstrainedSystem& system, std::vector<double> carried) {
   const la::OwnedDofs& owned = system.owned_dofs();
-  std::vector<double> carried = owned.of(reference);
   const std::vector<double>& fresh = system.reference_diagonal();
   for (std::size_t j = 0; j < carried.size(); ++j)
     if (!(carried[j] > 0.0) || system.prescribed(owned.dof(j))) carried[j] = fresh[j];
   system.set_reference_diagonal(std::move(carried));
+}
+
+void carry_reference(ConstrainedSystem& system, const std::vector<double>& reference) {
+  carry_owned_reference(system, system.owned_dofs().of(reference));
 }
 
 /// The old system's reference diagonal in `after`'s numbering (whole-length;
@@ -233,6 +237,25 @@ Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& befor
   const std::vector<double> reference = transferred_reference(system, before, after);
   out.system = std::make_unique<ConstrainedSystem>(after, std::move(K_new), std::move(bc), F);
   carry_reference(*out.system, reference);
+  out.times.constrain = since(t0);
+  return out;
+}
+
+Remodelled remodel_piece(const ConstrainedSystem& system, const setup::Discretization& before,
+                         const WholeNumbering& was, const setup::Discretization& after,
+                         const WholeNumbering& now, const bonds::BrokenBonds* failed, setup::DirichletData bc,
+                         std::span<const double> F, std::span<const double> damage) {
+  PERIMORPH_ASSERT(before.source && after.source, "remodel_piece: pieces with their source parts");
+  Remodelled out;
+  out.partial = false;
+  auto t0 = clock::now();
+  la::Matrix K = system::assemble_stiffness_over_processes(after, failed, damage).K;
+  out.times.add = since(t0);
+  t0 = clock::now();
+  const std::vector<double> reference = transfer_dof_vector(before.source->part, after.source->part,
+                                                            was.whole(system.reference_diagonal()), true);
+  out.system = std::make_unique<ConstrainedSystem>(after, std::move(K), std::move(bc), F);
+  carry_owned_reference(*out.system, now.owned_of(reference));
   out.times.constrain = since(t0);
   return out;
 }

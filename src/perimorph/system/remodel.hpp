@@ -10,6 +10,7 @@
 #include "perimorph/setup/boundary_conditions.hpp"
 #include "perimorph/setup/discretization.hpp"
 #include "perimorph/system/constrained_system.hpp"
+#include "perimorph/system/whole_numbering.hpp"
 
 #include <memory>
 #include <span>
@@ -73,5 +74,17 @@ struct Remodelled {
 Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& before,
                    const setup::Discretization& after, const bonds::BrokenBonds* failed,
                    setup::DirichletData bc, std::span<const double> F, std::span<const double> damage = {});
+
+/// The constrained system of `after`, a process's piece of the model rebuilt
+/// for a grown α (setup::rebuild_piece_for_alpha), from `system` on the piece
+/// `before`: assembled anew over the processes, as remodel does spread over
+/// processes (so the same bits as a run on parts), `failed` and `damage` in
+/// after's numbers. The reference diagonal carries over as in remodel,
+/// through the two pieces' source parts in the whole model's numbers (`was`
+/// numbers before's dofs, `now` after's). Collective.
+Remodelled remodel_piece(const ConstrainedSystem& system, const setup::Discretization& before,
+                         const WholeNumbering& was, const setup::Discretization& after,
+                         const WholeNumbering& now, const bonds::BrokenBonds* failed, setup::DirichletData bc,
+                         std::span<const double> F, std::span<const double> damage = {});
 
 }  // namespace perimorph::system
