@@ -182,12 +182,18 @@ for d in two two_then_one two_then_three one_then_two; do /usr/bin/python3 \"$3\
     # version 545 s among the CI's parallel tests): the timeout leaves it room.
     set_tests_properties(mpi_piece_checkpoints_${ranks}_ranks PROPERTIES
       ENVIRONMENT "${PM_MPI_ENV};OMP_NUM_THREADS=1" TIMEOUT 900)
-    # The same for runs whose α grows (pieces rebuilt with larger halos).
-    add_test(NAME mpi_piece_adaptive_checkpoints_${ranks}_ranks
-      COMMAND ${MPIEXEC_EXECUTABLE} -n ${ranks} $<TARGET_FILE:perimorph_mpi_tests>
-              --gtest_filter=PieceCheckpoint.RunsWithAdaptiveAlpha*)
-    set_tests_properties(mpi_piece_adaptive_checkpoints_${ranks}_ranks PROPERTIES
-      ENVIRONMENT "${PM_MPI_ENV};OMP_NUM_THREADS=1" TIMEOUT 900)
+    # The same for runs whose α grows (pieces rebuilt with larger halos), and
+    # for B7's block, whose crack runs on one side only.
+    foreach(which "adaptive_checkpoints:RunsWithAdaptiveAlpha" "crack_on_one_piece:ACrackOnOnePiece")
+      string(REPLACE ":" ";" which "${which}")
+      list(GET which 0 name)
+      list(GET which 1 filter)
+      add_test(NAME mpi_piece_${name}_${ranks}_ranks
+        COMMAND ${MPIEXEC_EXECUTABLE} -n ${ranks} $<TARGET_FILE:perimorph_mpi_tests>
+                --gtest_filter=PieceCheckpoint.${filter}*)
+      set_tests_properties(mpi_piece_${name}_${ranks}_ranks PROPERTIES
+        ENVIRONMENT "${PM_MPI_ENV};OMP_NUM_THREADS=1" TIMEOUT 900)
+    endforeach()
   endforeach()
   foreach(ranks 1 2 3)
     add_test(NAME mpi_distributed_assembly_and_solve_${ranks}_ranks

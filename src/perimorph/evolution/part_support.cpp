@@ -206,12 +206,12 @@ void PartSupport::rebind(const setup::Discretization& disc, RunState& state,
   disc_ = &disc;
   state.held_dofs.clear();
   downdates_seen_ = system.downdate_count();
-  if (state.failed_in_order.empty() && state.history.empty()) return;
+  if (state.failed_over_model == 0 && state.history.empty()) return;
   const la::DofValuesAt force = applied_force_of(disc, system),
                         reference = reference_diagonal_of(disc, system);
   const std::vector<Index> detached = system.free_dofs_without_stiffness();
   system.hold(dofs_of(disc, detached), true);
-  if (state.failed_in_order.empty()) {
+  if (state.failed_over_model == 0) {
     state.held_dofs = detached;
     return;
   }
