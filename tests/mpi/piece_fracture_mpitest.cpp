@@ -264,7 +264,7 @@ std::string bytes_of(const std::filesystem::path& file) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// A run with bond failure on the pieces (run::runs_on_pieces) against the
+// A run with bond failure on the pieces (run::process_model) against the
 // run on the parts: the fracture plate (30 increments, its crack running)
 // and the plate cut through by its pulled edge (parts cut free, nodes left
 // without stiffness, motions inside cells: PartSupport by dof names). The
