@@ -222,8 +222,8 @@ TEST_F(RestartFracture, RefusesATruncatedForeignOrNewerCheckpoint) {
   const std::size_t version_at = sizeof(std::uint64_t) + std::string("perimorph-checkpoint").size();
   const std::uint32_t version = run::kCheckpointVersion + 1;
   newer.replace(version_at, sizeof version, reinterpret_cast<const char*>(&version), sizeof version);
-  expect_refused(newer, "checkpoint format version " + std::to_string(version) + ", this perimorph reads version " +
-                            std::to_string(run::kCheckpointVersion));
+  expect_refused(newer, "checkpoint format version " + std::to_string(version) +
+                            ", this perimorph reads version " + std::to_string(run::kCheckpointVersion));
 }
 
 TEST_F(RestartFracture, NeedsTheOutputItContinues) {
