@@ -9,6 +9,7 @@
 // the pieces (supports and loads from the piece's sets, u held at the
 // piece's nodes) gives the whole model's u.
 
+#include "perimorph/casefile/parse_case.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/la/node_gather.hpp"
 #include "perimorph/la/petsc_session.hpp"
@@ -127,6 +128,45 @@ TEST(PieceModel, ASetMayMissAPieceButNotEveryPiece) {
   EXPECT_EQ(setup::set_dof_nodes(piece, "xmax", {}).empty(), !mine);
   piece.mesh.node_sets["nowhere"] = {};
   EXPECT_THROW((void)setup::set_dof_nodes(piece, "nowhere", {}), InputError);
+}
+
+/// A run with [adaptivity] keeps its part less the arrays a rebuild makes
+/// anew (setup::keep_source); the piece rebuilt from it for a grown α is the
+/// piece cut from the whole part rebuilt for that α: the same cells and the
+/// same matrix rows, bit for bit.
+TEST(PieceModel, ARebuildFromTheKeptSourceIsTheCutOfTheRebuiltPart) {
+  if (la::world_size() == 1) GTEST_SKIP() << "one process runs on the whole model";
+  const auto config =
+      casefile::parse_case_file(std::string(PERIMORPH_SOURCE_DIR) + "/examples/hole_plate_2d/case.toml");
+  ASSERT_TRUE(config.adaptivity.enabled);
+  const setup::Discretization piece = run::process_model(config);
+  ASSERT_TRUE(piece.source != nullptr);
+  const setup::Discretization& kept = piece.source->part;
+  EXPECT_EQ(kept.stiffness.num_cells(), 0);
+  EXPECT_EQ(kept.nonlocal->points.num_cells(), 0);
+  EXPECT_EQ(kept.nonlocal->graph.num_cells(), -1);
+  EXPECT_TRUE(kept.nonlocal->morph.purely_nonlocal.empty());
+  EXPECT_EQ(kept.dofmap.num_dofs(), run::process_part(config).dofmap.num_dofs()) << "the state's numbering";
+  // α = 1 in a disk across the hole's equator on the right (a ball the
+  // predictor would place), reaching cells of both halves.
+  const auto alpha = piece.nonlocal->alpha.grown({{alpha::Ball{Vec3(5.0, 4.0, 0.0), 1.0}, 0.5}}, 2);
+  const setup::Discretization got = setup::rebuild_piece_for_alpha(piece, alpha);
+  const setup::Discretization whole = setup::rebuild_for_alpha(run::process_part(config), alpha);
+  const setup::Discretization expected =
+      setup::cut_to_piece(whole, partition::coordinate_bisection(whole.mesh, la::world_size()).owner,
+                          la::world_rank(), la::any_over_processes);
+  EXPECT_GE(got.mesh.num_cells(), piece.mesh.num_cells());
+  EXPECT_TRUE(la::any_over_processes(got.mesh.num_cells() > piece.mesh.num_cells())) << "a larger halo";
+  EXPECT_EQ(got.piece->global_cell, expected.piece->global_cell);
+  EXPECT_EQ(got.dofmap.num_dofs(), expected.dofmap.num_dofs());
+  const Rows rows =
+      owned_rows(system::assemble_stiffness(got, system::piece_distribution(got.piece->dofs)).K);
+  ASSERT_FALSE(rows.empty());
+  EXPECT_TRUE(
+      rows ==
+      owned_rows(system::assemble_stiffness(expected, system::piece_distribution(expected.piece->dofs)).K));
+  // Rebuilt again from the new source.
+  EXPECT_TRUE(got.source != nullptr && got.source->part.nonlocal->points.num_cells() == 0);
 }
 
 }  // namespace

@@ -39,9 +39,7 @@ setup::Discretization process_model(const casefile::CaseConfig& config,
   std::vector<int> owner = partition::coordinate_bisection(part.mesh, processes).owner;
   setup::Discretization piece = setup::cut_to_piece(part, owner, rank, la::any_over_processes);
   // A rebuild for a grown α starts from the part (setup::rebuild_piece_for_alpha).
-  if (config.adaptivity.enabled)
-    piece.source =
-        std::make_shared<const setup::PieceSource>(setup::PieceSource{std::move(part), std::move(owner)});
+  if (config.adaptivity.enabled) piece.source = setup::keep_source(std::move(part), std::move(owner));
   return piece;
 }
 

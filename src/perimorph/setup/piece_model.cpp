@@ -126,13 +126,23 @@ Discretization cut_to_piece(const Discretization& part, std::span<const int> own
   return disc;
 }
 
+std::shared_ptr<const PieceSource> keep_source(Discretization part, std::vector<int> owner) {
+  part.stiffness = fem::ConstitutiveField(0, 0, 0);
+  if (part.nonlocal) {
+    NonlocalModel& nl = *part.nonlocal;
+    nl.points = {};
+    nl.graph = {};
+    nl.cuts = {};
+    nl.morph = {};
+  }
+  return std::make_shared<const PieceSource>(PieceSource{std::move(part), std::move(owner)});
+}
+
 Discretization rebuild_piece_for_alpha(const Discretization& piece, alpha::AlphaField alpha) {
   PERIMORPH_ASSERT(piece.piece && piece.source, "rebuild_piece_for_alpha needs a piece with its source part");
-  auto source = std::make_shared<PieceSource>(
-      PieceSource{rebuild_for_alpha(piece.source->part, std::move(alpha)), piece.source->owner});
-  Discretization next =
-      cut_to_piece(source->part, source->owner, piece.piece->part, piece.any_over_processes);
-  next.source = std::move(source);
+  Discretization part = rebuild_for_alpha(piece.source->part, std::move(alpha));
+  Discretization next = cut_to_piece(part, piece.source->owner, piece.piece->part, piece.any_over_processes);
+  next.source = keep_source(std::move(part), piece.source->owner);
   return next;
 }
 

@@ -14,6 +14,7 @@
 #include "perimorph/setup/discretization.hpp"
 
 #include <functional>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -39,9 +40,18 @@ struct PieceNumbers {
 
 /// What a piece of a run with [adaptivity] is cut from (Discretization::source).
 struct PieceSource {
-  Discretization part;     ///< the process's part: build_discretization with a ModelPart, share_flags kept
+  /// The process's part (build_discretization with a ModelPart, share_flags
+  /// kept) without what a rebuild for α makes anew: its morphed C, non-local
+  /// points, cell graph, cuts and CG/DG flags are empty (keep_source). Its
+  /// mesh and dof map number the state carried across a rebuild.
+  Discretization part;
   std::vector<int> owner;  ///< the part of every cell of the whole mesh
 };
+
+/// The source of the pieces of a run with [adaptivity]: `part` less the
+/// arrays rebuild_for_alpha computes anew (as large as the piece's own),
+/// with `owner`, the part of every cell of the whole mesh.
+std::shared_ptr<const PieceSource> keep_source(Discretization part, std::vector<int> owner);
 
 /// The whole-mesh number of cell c of `disc` (c itself but on a piece), and back
 /// (-1 where a piece lacks it).
