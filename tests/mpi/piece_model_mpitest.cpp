@@ -146,12 +146,13 @@ TEST(PieceModel, ARebuildFromTheKeptSourceIsTheCutOfTheRebuiltPart) {
   EXPECT_EQ(kept.nonlocal->points.num_cells(), 0);
   EXPECT_EQ(kept.nonlocal->graph.num_cells(), -1);
   EXPECT_TRUE(kept.nonlocal->morph.purely_nonlocal.empty());
-  EXPECT_EQ(kept.dofmap.num_dofs(), run::process_part(config).dofmap.num_dofs()) << "the state's numbering";
+  const setup::Discretization part = run::process_part(config);
+  EXPECT_EQ(kept.dofmap.num_dofs(), part.dofmap.num_dofs()) << "the state's numbering";
   // α = 1 in a disk across the hole's equator on the right (a ball the
   // predictor would place), reaching cells of both halves.
   const auto alpha = piece.nonlocal->alpha.grown({{alpha::Ball{Vec3(5.0, 4.0, 0.0), 1.0}, 0.5}}, 2);
   const setup::Discretization got = setup::rebuild_piece_for_alpha(piece, alpha);
-  const setup::Discretization whole = setup::rebuild_for_alpha(run::process_part(config), alpha);
+  const setup::Discretization whole = setup::rebuild_for_alpha(part, alpha);
   const setup::Discretization expected =
       setup::cut_to_piece(whole, partition::coordinate_bisection(whole.mesh, la::world_size()).owner,
                           la::world_rank(), la::any_over_processes);
