@@ -16,6 +16,7 @@
 #include "perimorph/la/key_exchange.hpp"
 #include "perimorph/la/linear_solver.hpp"
 #include "perimorph/la/matrix.hpp"
+#include "perimorph/la/neighbour_exchange.hpp"
 #include "perimorph/la/node_gather.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/la/vector.hpp"
@@ -27,6 +28,8 @@
 #include "support/pieces.hpp"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 #include <cstring>
 #include <tuple>
@@ -210,6 +213,49 @@ TEST(ValuesOfKeys, AKeyNoProcessHoldsStopsEveryProcess) {
   // Process 0 asks for an odd key, which nobody holds.
   const std::vector<Index> wanted = rank == 0 ? std::vector<Index>{1} : std::vector<Index>{};
   EXPECT_THROW(la::values_of_keys(keys, values, wanted, 2 * la::world_size()), Error);
+}
+
+// la::exchange: each process sends a parcel to the next two processes (one
+// empty, not sent, to the second on odd ranks); each receives from the right
+// senders, in rank order, exactly what they sent. On one process nothing.
+TEST(Exchange, DeliversEachParcelToItsProcessOnly) {
+  const int rank = la::world_rank(), size = la::world_size();
+  std::vector<la::Parcel> out;
+  for (int step : {1, 2}) {
+    const int to = (rank + step) % size;
+    if (to == rank ||
+        std::any_of(out.begin(), out.end(), [&](const la::Parcel& p) { return p.process == to; }))
+      continue;
+    la::Parcel p{to, {}};
+    if (step == 1 || rank % 2 == 0)
+      for (int k = 0; k <= rank; ++k) p.values.push_back(100.0 * rank + 10.0 * step + k);
+    out.push_back(std::move(p));
+  }
+  const std::vector<la::Parcel> in = la::exchange(out);
+  std::vector<la::Parcel> expected;
+  for (int from = 0; from < size; ++from)
+    for (int step : {1, 2}) {
+      if (from == rank || (from + step) % size != rank) continue;
+      if (step == 2 && (from + 1) % size == rank) continue;  // the sender sent one parcel here
+      if (step == 2 && from % 2 == 1) continue;              // empty: not sent
+      la::Parcel p{from, {}};
+      for (int k = 0; k <= from; ++k) p.values.push_back(100.0 * from + 10.0 * step + k);
+      expected.push_back(std::move(p));
+    }
+  ASSERT_EQ(in.size(), expected.size()) << "process " << rank;
+  for (std::size_t k = 0; k < in.size(); ++k) {
+    EXPECT_EQ(in[k].process, expected[k].process);
+    EXPECT_EQ(in[k].values, expected[k].values) << "from " << in[k].process;
+  }
+  // The others' lists on process 0 only, in rank order; the largest value everywhere.
+  const std::vector<double> zero = la::gather_on_process_zero({static_cast<double>(rank), 0.5});
+  if (rank == 0) {
+    ASSERT_EQ(zero.size(), 2U * static_cast<std::size_t>(size));
+    for (int r = 0; r < size; ++r) EXPECT_EQ(zero[2 * static_cast<std::size_t>(r)], r);
+  } else {
+    EXPECT_TRUE(zero.empty());
+  }
+  EXPECT_EQ(la::largest_over_processes(-1.0 - rank), -1.0);
 }
 
 }  // namespace

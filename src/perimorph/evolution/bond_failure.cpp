@@ -4,6 +4,7 @@
 #include "perimorph/core/dim_dispatch.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/dofs/dof_map.hpp"
+#include "perimorph/la/neighbour_exchange.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/peridynamics/pair_kernel.hpp"
 #include "perimorph/setup/critical_stretch.hpp"
@@ -14,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <set>
 
@@ -31,53 +33,8 @@ void BondFailure::bind(const setup::Discretization& disc) {
   for (const std::string& region : regions)
     for (Index c : disc.mesh.cell_sets.at(region)) no_fail_[static_cast<std::size_t>(c)] = 1;
   decides_ = setup::cells_of_process(disc, la::world_size(), la::world_rank());
+  holders_ = CellHolders(disc, decides_);  // collective on several processes
 }
-
-namespace {
-
-constexpr std::size_t kPacked = 16;  ///< doubles per bond in gather_bonds
-
-/// Every process's bonds (each in cell order e, from disjoint sets of cells
-/// e) and their points on every process, in whole-mesh cell order: the
-/// one-process order. Sent in whole-mesh cell numbers, given back in the
-/// model's (on a piece, e = f = -1 for a bond whose cells it does not both hold).
-void gather_bonds(const setup::Discretization& disc, std::vector<assembly::StretchedBond>& bonds,
-                  std::vector<BondPoints>& points) {
-  std::vector<double> packed;
-  packed.reserve(bonds.size() * kPacked);
-  for (std::size_t k = 0; k < bonds.size(); ++k) {
-    const auto& b = bonds[k];
-    const auto& p = points[k];
-    packed.insert(packed.end(),
-                  {static_cast<double>(setup::global_cell(disc, b.id.e)),
-                   static_cast<double>(setup::global_cell(disc, b.id.f)), static_cast<double>(b.id.g),
-                   static_cast<double>(b.id.h), b.stretch, b.energy, b.k, b.xi.x(), b.xi.y(), b.xi.z(),
-                   p.g.x(), p.g.y(), p.g.z(), p.h.x(), p.h.y(), p.h.z()});
-  }
-  const std::vector<double> all = la::all_gather(packed);
-  const std::size_t n = all.size() / kPacked;
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return all[a * kPacked] < all[b * kPacked]; });
-  bonds.assign(n, {});
-  points.assign(n, {});
-  for (std::size_t i = 0; i < n; ++i) {
-    const double* v = all.data() + order[i] * kPacked;
-    auto& b = bonds[i];
-    Index e = setup::local_cell(disc, static_cast<Index>(v[0])),
-          f = setup::local_cell(disc, static_cast<Index>(v[1]));
-    if (e < 0 || f < 0) e = f = -1;
-    b.id = {e, f, static_cast<int>(v[2]), static_cast<int>(v[3])};
-    b.stretch = v[4];
-    b.energy = v[5];
-    b.k = v[6];
-    b.xi = Vec3(v[7], v[8], v[9]);
-    points[i] = {Vec3(v[10], v[11], v[12]), Vec3(v[13], v[14], v[15])};
-  }
-}
-
-}  // namespace
 
 assembly::NonlocalSpace BondFailure::space(const RunState& state) const {
   return disc_->nonlocal_space(&state.failed);
@@ -85,7 +42,8 @@ assembly::NonlocalSpace BondFailure::space(const RunState& state) const {
 
 Proposal BondFailure::inspect(const RunState& state, const system::ConstrainedSystem& /*system*/) {
   proposed_ = select(state, &proposed_points_);
-  return {proposed_.size()};
+  if (decides_.empty()) return {proposed_.size()};
+  return {static_cast<std::size_t>(la::sum_over_processes({static_cast<double>(proposed_.size())})[0])};
 }
 
 Effect BondFailure::apply(RunState& state, system::ConstrainedSystem& system) {
@@ -108,17 +66,17 @@ std::vector<assembly::StretchedBond> BondFailure::select(const RunState& state,
            (no_fail_[static_cast<std::size_t>(b.id.e)] || no_fail_[static_cast<std::size_t>(b.id.f)]);
   });
   std::vector<BondPoints> where;
-  if (points != nullptr || !decides_.empty()) {
+  if (points != nullptr) {
     const auto& pts = disc_->nonlocal->points;
     where.reserve(over.size());
     for (const auto& b : over)
       where.push_back({bonds::point_position(disc_->mesh, pts, b.id.e, b.id.g),
                        bonds::point_position(disc_->mesh, pts, b.id.f, b.id.h)});
   }
-  if (!decides_.empty()) gather_bonds(*disc_, over, where);
-  if (spec.rule == casefile::BreakRule::fraction && !over.empty()) {
+  if (spec.rule == casefile::BreakRule::fraction) {
     double smax = 0.0;
     for (const auto& b : over) smax = std::max(smax, b.stretch);
+    if (!decides_.empty()) smax = la::largest_over_processes(smax);  // collective
     const double bar = spec.fraction * smax;
     std::size_t kept = 0;
     for (std::size_t k = 0; k < over.size(); ++k) {
@@ -156,23 +114,20 @@ void BondFailure::shape_of(const assembly::StretchedBond& b, BondShape& out) con
 FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bonds, RunState& state,
                                  system::ConstrainedSystem& system) const {
   const int dim = disc_->dim();
+  // Each bond to the processes holding its cell e; the pass's totals and
+  // places from the per-cell summary (bond_decisions.hpp).
+  const SharedPass pass = share_pass(*disc_, bonds, s_crit_, holders_, !decides_.empty());
   std::vector<double> block;
   BondShape bs;
-  FailureEnergy energy;
-  for (const auto& b : bonds) {
-    const double critical = assembly::energy_at_stretch(b, s_crit_);
-    if (b.id.e < 0) {  // on a piece, a bond it does not hold: in the ledger and the count only
-      energy.dissipated += critical;
-      energy.overshoot += b.energy - critical;
-      ++state.failed_over_model;
-      continue;
-    }
+  for (std::size_t k = 0; k < pass.bonds.size(); ++k) {
+    assembly::StretchedBond b = pass.bonds[k].bond;
+    const double critical = pass.bonds[k].critical;
+    b.id.e = setup::local_cell(*disc_, b.id.e);
+    b.id.f = setup::local_cell(*disc_, b.id.f);
+    if (b.id.e < 0 || b.id.f < 0) continue;  // a piece holding e but not f: no row of its
     if (!state.failed.add(b.id)) continue;
     state.failed_in_order.push_back(b.id);
-    if (disc_->piece) state.failed_place.push_back(state.failed_over_model);
-    ++state.failed_over_model;
-    energy.dissipated += critical;
-    energy.overshoot += b.energy - critical;
+    if (disc_->piece) state.failed_place.push_back(state.failed_over_model + pass.place[k]);
     state.cell_dissipated[b.id.e] += 0.5 * critical;
     state.cell_dissipated[b.id.f] += 0.5 * critical;
     shape_of(b, bs);
@@ -184,9 +139,18 @@ FailureEnergy BondFailure::apply(const std::vector<assembly::StretchedBond>& bon
     system.downdate(bs.dofs, block);
   }
   system.finish_downdate();
+  state.failed_over_model += pass.count;
+  const FailureEnergy energy{pass.dissipated, pass.overshoot, pass.count, pass.max_stretch};
   state.energy.dissipated += energy.dissipated;
   state.energy.overshoot += energy.overshoot;
   return energy;
+}
+
+void BondFailure::proposed_on_process_zero(std::vector<assembly::StretchedBond>& bonds,
+                                           std::vector<BondPoints>& points) const {
+  bonds = proposed_;
+  points = proposed_points_;
+  gather_pass_on_process_zero(*disc_, bonds, points, !decides_.empty());
 }
 
 FractureFields BondFailure::fields(const RunState& state, std::span<const Index> cells) const {
@@ -213,28 +177,18 @@ FractureFields BondFailure::fields(const RunState& state, std::span<const Index>
   return out;
 }
 
-std::vector<assembly::InterfaceBonds> BondFailure::broken_interfaces(const RunState& state) const {
-  std::vector<assembly::InterfaceBonds> mine = assembly::interface_bonds(space(state), decides_);
-  std::erase_if(mine, [](const auto& i) { return i.total == 0 || i.failed < i.total; });
-  if (decides_.empty()) return mine;
-  // Each process looked at the faces of its cells e: every process gets them
-  // all, in cell order (each process's in cell order, from disjoint cells).
-  // In whole-mesh numbers (a piece's box cells are its cells' whole numbers).
-  std::vector<double> packed;
-  for (const auto& i : mine)
-    packed.insert(packed.end(),
-                  {static_cast<double>(setup::global_cell(*disc_, i.e)),
-                   static_cast<double>(setup::global_cell(*disc_, i.f)), static_cast<double>(i.axis)});
-  const std::vector<double> all = la::all_gather(packed);
-  std::vector<assembly::InterfaceBonds> out(all.size() / 3);
-  for (std::size_t k = 0; k < out.size(); ++k) {
-    out[k].e = static_cast<Index>(all[3 * k]);
-    out[k].f = static_cast<Index>(all[3 * k + 1]);
-    out[k].axis = static_cast<int>(all[3 * k + 2]);
-  }
-  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.e < b.e; });
-  return out;
+namespace {
+
+/// The process that counts column `key` of broken faces normal to `axis`
+/// (crack_area): a hash of the column, spreading them over the processes.
+int column_counter(int axis, const std::array<Index, 2>& key, int processes) {
+  std::uint64_t h = static_cast<std::uint64_t>(key[0]) * 0x9E3779B97F4A7C15ULL;
+  h ^= (static_cast<std::uint64_t>(key[1]) + static_cast<std::uint64_t>(axis + 1)) * 0xC2B2AE3D27D4EB4FULL;
+  h ^= h >> 29;
+  return static_cast<int>(h % static_cast<std::uint64_t>(processes));
 }
+
+}  // namespace
 
 CrackArea BondFailure::crack_area(const RunState& state) const {
   CrackArea out;
@@ -251,20 +205,56 @@ CrackArea BondFailure::crack_area(const RunState& state) const {
       if (d != axis) a *= h[d];
     return a;
   };
-  // Per normal axis, the positions (the other two cell indices) of the broken faces.
+  // The broken faces of this process's cells e: per normal axis, how many
+  // and their columns (the other two cell indices of the box).
+  std::array<double, 3> faces{};
   std::array<std::set<std::array<Index, 2>>, 3> columns;
-  for (const auto& i : broken_interfaces(state)) {
-    out.total += face_area(i.axis);
-    const auto ijk =
-        decides_.empty() ? layout.cell_ijk(i.e) : layout.box_cell_ijk(i.e);  // whole-mesh numbers
+  std::vector<assembly::InterfaceBonds> mine = assembly::interface_bonds(space(state), decides_);
+  for (const auto& i : mine) {
+    if (i.total == 0 || i.failed < i.total) continue;
+    const auto a = static_cast<std::size_t>(i.axis);
+    faces[a] += 1.0;
+    const auto ijk = layout.cell_ijk(i.e);
     std::array<Index, 2> key{};
     for (int d = 0, k = 0; d < 3; ++d)
       if (d != i.axis) key[static_cast<std::size_t>(k++)] = ijk[static_cast<std::size_t>(d)];
-    columns[static_cast<std::size_t>(i.axis)].insert(key);
+    columns[a].insert(key);
   }
-  for (int axis = 0; axis < dim; ++axis)
-    out.projected = std::max(
-        out.projected, static_cast<double>(columns[static_cast<std::size_t>(axis)].size()) * face_area(axis));
+  std::array<double, 3> distinct{};
+  for (std::size_t a = 0; a < 3; ++a) distinct[a] = static_cast<double>(columns[a].size());
+  if (!decides_.empty()) {
+    // Each column counted by one process (column_counter), whichever
+    // processes' cells have faces in it; the counts summed (whole numbers: exact).
+    const int processes = la::world_size(), rank = la::world_rank();
+    std::array<std::set<std::array<Index, 2>>, 3> counted;
+    std::vector<la::Parcel> sent;
+    for (int axis = 0; axis < 3; ++axis)
+      for (const auto& key : columns[static_cast<std::size_t>(axis)]) {
+        const int p = column_counter(axis, key, processes);
+        if (p == rank) {
+          counted[static_cast<std::size_t>(axis)].insert(key);
+          continue;
+        }
+        auto it = std::find_if(sent.begin(), sent.end(), [&](const la::Parcel& q) { return q.process == p; });
+        if (it == sent.end()) it = sent.insert(sent.end(), la::Parcel{p, {}});
+        it->values.insert(it->values.end(), {static_cast<double>(axis), static_cast<double>(key[0]),
+                                             static_cast<double>(key[1])});
+      }
+    for (const la::Parcel& p : la::exchange(sent))
+      for (std::size_t k = 0; k < p.values.size(); k += 3)
+        counted[static_cast<std::size_t>(p.values[k])].insert(
+            {static_cast<Index>(p.values[k + 1]), static_cast<Index>(p.values[k + 2])});
+    const std::vector<double> sums = la::sum_over_processes(
+        {faces[0], faces[1], faces[2], static_cast<double>(counted[0].size()),
+         static_cast<double>(counted[1].size()), static_cast<double>(counted[2].size())});
+    std::copy_n(sums.begin(), 3, faces.begin());
+    std::copy_n(sums.begin() + 3, 3, distinct.begin());
+  }
+  for (int axis = 0; axis < dim; ++axis) {
+    const auto a = static_cast<std::size_t>(axis);
+    out.total += faces[a] * face_area(axis);
+    out.projected = std::max(out.projected, distinct[a] * face_area(axis));
+  }
   return out;
 }
 

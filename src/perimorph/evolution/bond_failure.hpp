@@ -9,6 +9,7 @@
 
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/bonds/broken_bonds.hpp"
+#include "perimorph/evolution/bond_decisions.hpp"
 #include "perimorph/evolution/component.hpp"
 #include "perimorph/setup/discretization.hpp"
 #include "perimorph/system/constrained_system.hpp"
@@ -17,13 +18,17 @@
 
 namespace perimorph::evolution {
 
-/// The energy of bonds broken by one apply() (THEORY §5): `dissipated` counts
-/// each at the critical stretch, ½ W ᾱ c (s_crit |ξ|)² (the per-bond energy of
-/// the G_c closed forms and of `perimorph gc`); `overshoot` is what they held
-/// beyond it at the solve that found them over s_crit (≥ 0; it vanishes as the
-/// load increments shrink).
+/// The energy of bonds broken by one apply() over the model (THEORY §5):
+/// `dissipated` counts each at the critical stretch, ½ W ᾱ c (s_crit |ξ|)²
+/// (the per-bond energy of the G_c closed forms and of `perimorph gc`);
+/// `overshoot` is what they held beyond it at the solve that found them over
+/// s_crit (≥ 0; it vanishes as the load increments shrink). Each summed per
+/// cell e, then over the cells in whole-mesh order: the same bits on any
+/// number of processes. With how many bonds broke and their largest stretch.
 struct FailureEnergy {
   double dissipated = 0.0, overshoot = 0.0;
+  std::size_t count = 0;
+  double max_stretch = 0.0;
 };
 
 /// Per-cell fracture fields for the VTU (empty for a run without [fracture]),
@@ -42,11 +47,6 @@ struct CrackArea {
   double total = 0.0, projected = 0.0;
 };
 
-/// Where a bond's two points are (bonds::point_position of g in e, h in f).
-struct BondPoints {
-  Vec3 g = Vec3::Zero(), h = Vec3::Zero();
-};
-
 /// Bond failure as an evolution component: inspect selects the bonds over
 /// the criterion at the state's displacement, apply breaks them by downdating
 /// the system (Effect::downdate). Dofs left with no stiffness and parts cut
@@ -56,7 +56,8 @@ class BondFailure final : public Component {
   explicit BondFailure(const setup::Discretization& disc);
 
   std::string_view name() const override { return "bond failure"; }
-  /// Keeps select(state) as the proposal; its size is the number of bonds.
+  /// Keeps select(state) as the proposal; its size is the number of bonds
+  /// over the model (collective on several processes).
   Proposal inspect(const RunState& state, const system::ConstrainedSystem& system) override;
   /// Breaks the proposed bonds (apply below); Effect::downdate.
   Effect apply(RunState& state, system::ConstrainedSystem& system) override;
@@ -67,12 +68,16 @@ class BondFailure final : public Component {
   /// Nothing is kept between increments but the discretization.
   void restore(const setup::Discretization& disc, core::BinaryReader& /*in*/) override { bind(disc); }
 
-  /// The bonds proposed by the last inspect (what the last apply broke), and
-  /// where their points are (on a piece of the model, the points of bonds it
-  /// does not hold too).
+  /// The bonds this process proposed at the last inspect (what the last
+  /// apply broke of its cells), and where their points are.
   const std::vector<assembly::StretchedBond>& proposed() const { return proposed_; }
   const std::vector<BondPoints>& proposed_points() const { return proposed_points_; }
-  /// Their energy, from the last apply.
+  /// Every process's proposed bonds and points on process 0, in the whole
+  /// model's order, cells in whole-mesh numbers (empty on the others;
+  /// collective): what it writes.
+  void proposed_on_process_zero(std::vector<assembly::StretchedBond>& bonds,
+                                std::vector<BondPoints>& points) const;
+  /// Their energy and count over the model, from the last apply.
   const FailureEnergy& applied_energy() const { return applied_; }
   /// The space the stiffness is assembled with, the state's failed bonds left out.
   assembly::NonlocalSpace space(const RunState& state) const;
@@ -83,26 +88,24 @@ class BondFailure final : public Component {
   /// largest such s; bonds with an end in a [fracture] no_fail region, and
   /// with intra_cell_failure = false bonds between two points of one cell,
   /// and with [material.damage] bonds with an end whose damage is below d_c
-  /// (THEORY §6), are never selected. Grouped by cell pair. On several
-  /// processes each decides the bonds of its cells and the decisions are
-  /// gathered (in whole-mesh cell numbers, with their points' positions):
-  /// every process gets the same list, in the one-process order. On a piece
-  /// of the model (setup::cut_to_piece) the cells are given back in local
-  /// numbers, and a bond whose two cells the piece does not both hold has
-  /// e = f = −1 (it touches no row the process owns: a piece holds every
-  /// cell bonded to a cell with a node it owns). `points`, if given, gets
-  /// where each bond's points are.
+  /// (THEORY §6), are never selected. Grouped by cell pair, cells e
+  /// ascending. On several processes, the bonds {e, f} (e ≤ f) of the cells e
+  /// this process decides (cells_of_process; the fraction rule's largest
+  /// stretch is the model's: collective). `points`, if given, gets where
+  /// each bond's points are.
   std::vector<assembly::StretchedBond> select(const RunState& state,
                                               std::vector<BondPoints>* points = nullptr) const;
 
-  /// Breaks `bonds` (from select at the state's displacement): records them in
-  /// the state (failed bonds, their count over the model and, on a piece,
-  /// their places in its order, D and overshoot in the ledger, D per cell; a
-  /// bond a piece does not hold, e = −1, in the ledger and count only) and
+  /// Breaks `bonds` (from select at the state's displacement) and, on several
+  /// processes, the other processes' (collective): each process sends its
+  /// bonds to the processes that hold their cells e (bond_decisions.hpp).
+  /// Records in the state the bonds whose two cells it holds (failed bonds,
+  /// in the whole model's order, and on a piece their places in it; D per
+  /// cell), the count over the model and D and overshoot in the ledger, and
   /// downdates `system` by their blocks (ConstrainedSystem::downdate): K −=
   /// the blocks; A −= them on free rows and columns; the right-hand side takes
   /// their prescribed columns. Finalizes K and A. Returns their energy, at
-  /// s_crit and beyond it.
+  /// s_crit and beyond it, and count over the model.
   FailureEnergy apply(const std::vector<assembly::StretchedBond>& bonds, RunState& state,
                       system::ConstrainedSystem& system) const;
 
@@ -128,16 +131,14 @@ class BondFailure final : public Component {
   /// Crack area from the faces between adjacent cells all of whose bonds
   /// have failed (structured meshes; 2D: length × thickness; 1D: the
   /// cross-section). Pre-crack cuts are not counted (their bonds never existed).
-  /// On several processes each looks at its cells' faces (collective).
+  /// Per axis, the count of faces times a face's area: the same bits on any
+  /// number of processes. On several processes each looks at its cells'
+  /// faces, and each column is counted by one process (collective).
   CrackArea crack_area(const RunState& state) const;
 
  private:
   /// Onto `disc` (a rebuilt piece numbers its cells anew): its no-fail and decided cells.
   void bind(const setup::Discretization& disc);
-  /// The interfaces all of whose bonds have failed, in cell order, on every
-  /// process (each process finds those of its cells e; collective); on
-  /// several processes in whole-mesh cell numbers.
-  std::vector<assembly::InterfaceBonds> broken_interfaces(const RunState& state) const;
   const setup::Discretization* disc_;  ///< non-owning: the run's current discretization
   double s_crit_ = 0.0;
   std::vector<char> no_fail_;  ///< per cell, 1 in a no_fail region; empty when there is none
@@ -145,6 +146,7 @@ class BondFailure final : public Component {
   /// bonds {e, f} (e ≤ f): the cells of its part (partition::coordinate_bisection,
   /// as the assembly's). Empty on one process.
   std::vector<char> decides_;
+  CellHolders holders_;  ///< the other processes holding each decided cell
   std::vector<assembly::StretchedBond> proposed_;
   std::vector<BondPoints> proposed_points_;
   FailureEnergy applied_;

@@ -121,7 +121,6 @@ void QuasiStaticRun::restore(const std::string& path, const RunOptions& /*option
     evolution::RunState whole_state = whole_of->empty_whole();
     evolution::restore_state(whole_state, in);
     state_ = whole_of->piece_of(whole_state);
-    failed_points_ = whole_of->failed_bond_points(whole_state);
   } else {
     evolution::restore_state(state_, in);
   }

@@ -138,12 +138,11 @@ void QuasiStaticRun::solve() {
   }
   // A re-equilibration at fixed load.
   const std::vector<double> u_before = owned_dofs_.of(state_.u);
-  if (fracture_ && bonds_failed_in_pass_ && !fracture_->proposed().empty()) {
-    double max_stretch = 0.0;
-    for (const auto& b : fracture_->proposed()) max_stretch = std::max(max_stretch, b.stretch);
-    output_->add_failure_row(state_.increment, rec_.break_iterations, fracture_->proposed().size(),
-                             fracture_->applied_energy(), max_stretch / fracture_->s_crit(),
-                             summary_.last_solve, iteration_seconds);
+  if (fracture_ && bonds_failed_in_pass_ && fracture_->applied_energy().count > 0) {
+    const evolution::FailureEnergy& failed = fracture_->applied_energy();
+    output_->add_failure_row(state_.increment, rec_.break_iterations, failed.count, failed,
+                             failed.max_stretch / fracture_->s_crit(), summary_.last_solve,
+                             iteration_seconds);
   }
   state_.u = gather(u_);
   const std::vector<double>& F = system_->applied_force();  // at the owned dofs
@@ -208,11 +207,11 @@ bool QuasiStaticRun::evolve() {
   }
   if (!changed) return false;
   system_->operator_changed();
-  if (bonds_failed_in_pass_) {
-    output_->add_failed_bonds(state_.increment, rec_.break_iterations, fracture_->proposed(),
-                              fracture_->proposed_points(), fracture_->s_crit());
-    if (disc_->piece)
-      for (const auto& p : fracture_->proposed_points()) failed_points_.emplace_back(p.g, p.h);
+  if (bonds_failed_in_pass_ && disc_->config.output.failed_bonds) {
+    std::vector<assembly::StretchedBond> bonds;
+    std::vector<evolution::BondPoints> points;
+    fracture_->proposed_on_process_zero(bonds, points);  // collective
+    output_->add_failed_bonds(state_.increment, rec_.break_iterations, bonds, points, fracture_->s_crit());
   }
   return true;
 }
@@ -353,8 +352,8 @@ RunSummary QuasiStaticRun::finish() {
             : disc_->dofmap.num_dofs();
   summary_.alpha = state_.alpha;
   summary_.damage = state_.history;
-  if (disc_->piece) {
-    summary_.failed_bond_points = std::move(failed_points_);
+  if (disc_->piece && disc_->nonlocal) {
+    summary_.failed_bond_points = evolution::failed_bond_points_over_processes(*disc_, state_);  // collective
   } else if (disc_->nonlocal) {
     const auto& pts = disc_->nonlocal->points;
     for (const auto& id : state_.failed_in_order)

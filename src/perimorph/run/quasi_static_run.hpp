@@ -175,9 +175,6 @@ class QuasiStaticRun {
   std::vector<double> u_prev_, fint_prev_, fint_;
   IncrementRecord rec_;  ///< of the increment in progress
   std::size_t failed_before_ = 0;
-  /// On a piece of the model, where each failed bond's points are, in the
-  /// order they failed (on a part the summary reads the state's failed bonds).
-  std::vector<std::pair<Vec3, Vec3>> failed_points_;
   double dissipated_before_ = 0.0;
   bool options_checked_ = false;
   int checkpoint_every_ = 0;

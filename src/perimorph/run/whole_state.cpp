@@ -165,27 +165,4 @@ evolution::RunState WholeState::piece_of(const evolution::RunState& whole) const
   return out;
 }
 
-std::vector<std::pair<Vec3, Vec3>> WholeState::failed_bond_points(const evolution::RunState& whole) const {
-  const std::size_t n = whole.failed_in_order.size();
-  std::vector<double> mine(6 * n, -0.0);
-  if (piece_->nonlocal) {
-    const auto& pts = piece_->nonlocal->points;
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto& id = whole.failed_in_order[k];
-      const Index e = setup::local_cell(*piece_, id.e), f = setup::local_cell(*piece_, id.f);
-      if (e < 0 || f < 0 || !piece_->piece->of_part(e)) continue;
-      const Vec3 g = bonds::point_position(piece_->mesh, pts, e, id.g),
-                 h = bonds::point_position(piece_->mesh, pts, f, id.h);
-      std::copy_n(g.data(), 3, mine.begin() + static_cast<std::ptrdiff_t>(6 * k));
-      std::copy_n(h.data(), 3, mine.begin() + static_cast<std::ptrdiff_t>(6 * k + 3));
-    }
-  }
-  const std::vector<double> all = la::from_owners(std::move(mine));
-  std::vector<std::pair<Vec3, Vec3>> out(n);
-  for (std::size_t k = 0; k < n; ++k)
-    out[k] = {Vec3(all[6 * k], all[6 * k + 1], all[6 * k + 2]),
-              Vec3(all[6 * k + 3], all[6 * k + 4], all[6 * k + 5])};
-  return out;
-}
-
 }  // namespace perimorph::run

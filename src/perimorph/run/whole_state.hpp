@@ -54,9 +54,6 @@ class WholeState {
   /// part's cells (the only ones it reads), the held dofs as names, the
   /// damage history of its cells.
   evolution::RunState piece_of(const evolution::RunState& whole) const;
-  /// Where the two points of each of a whole state's failed bonds are, in
-  /// its order, on every process (each from the process that decided it).
-  std::vector<std::pair<Vec3, Vec3>> failed_bond_points(const evolution::RunState& whole) const;
 
  private:
   std::size_t points_per_cell() const;  ///< of the damage history (0 without damage)

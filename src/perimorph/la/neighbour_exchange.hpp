@@ -1,0 +1,32 @@
+#pragma once
+// Point-to-point exchanges between the processes that share something (issue
+// 17, item 2): each process sends a list of values to the few processes that
+// need them, and no process receives what it has no use for. The processes a
+// process hears from are found with PETSc's PetscCommBuildTwoSided (a
+// non-blocking consensus: no P × P table of counts), then the lists travel
+// directly. And a gather onto process 0 alone, for what only it writes.
+
+#include <vector>
+
+namespace perimorph::la {
+
+/// A list of values to or from one process.
+struct Parcel {
+  int process = 0;
+  std::vector<double> values;
+};
+
+/// Sends each parcel of `outgoing` to its process (distinct processes, none
+/// this one; an empty parcel is not sent) and returns the parcels the other
+/// processes sent this one, ordered by sender (collective over
+/// PETSC_COMM_WORLD; nothing on one process).
+std::vector<Parcel> exchange(const std::vector<Parcel>& outgoing);
+
+/// Every process's `mine`, one after the other in rank order, on process 0;
+/// empty on the others (collective; `mine` itself on one process).
+std::vector<double> gather_on_process_zero(const std::vector<double>& mine);
+
+/// The largest of `value` over the processes (collective; exact).
+double largest_over_processes(double value);
+
+}  // namespace perimorph::la
