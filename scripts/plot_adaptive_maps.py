@@ -60,11 +60,15 @@ def main():
             keep = np.abs(cen[:, 2] - z) <= 0.5 * size[:, 2] + 1e-12
         inc = int(re.search(r"_(\d+)\.p?vtu$", path).group(1))
         for i, (name, cmap) in enumerate((("alpha_mean", "viridis"), ("damage", "magma"))):
-            top = 1.0 if i == 0 else max(1e-12, float(data[name].max()))  # damage: scaled to its largest value
+            peak = float(data[name].max())
+            # damage: scaled to its largest value; none yet: on [0, 1] (not [0, 1e-12], whose
+            # colorbar's offset label overlapped the title)
+            top = 1.0 if i == 0 or peak <= 0.0 else peak
             s = ax[i, j].scatter(cen[keep, 0], cen[keep, 1], c=data[name][keep], cmap=cmap, vmin=0, vmax=top,
                                  marker="s", s=max(2.0, 6000.0 / keep.sum()))
             ax[i, j].set_aspect("equal")
-            ax[i, j].set_title(f"{'α' if i == 0 else 'damage'}, increment {inc}")
+            none = " (none yet)" if i == 1 and peak <= 0.0 else ""
+            ax[i, j].set_title(f"{'α' if i == 0 else 'damage'}, increment {inc}{none}")
             fig.colorbar(s, ax=ax[i, j], shrink=0.7)
     png = args.png or os.path.join(args.output, base + ".png")
     fig.tight_layout()
