@@ -26,9 +26,7 @@ CellHolders::CellHolders(const setup::Discretization& disc, std::span<const char
   for (Index c = 0; c < disc.mesh.num_cells(); ++c) {
     if (numbers.of_part(c)) continue;
     const int owner = numbers.owner[static_cast<std::size_t>(c)];
-    auto it = std::find_if(out.begin(), out.end(), [&](const la::Parcel& p) { return p.process == owner; });
-    if (it == out.end()) it = out.insert(out.end(), la::Parcel{owner, {}});
-    it->values.push_back(static_cast<double>(setup::global_cell(disc, c)));
+    la::parcel_for(out, owner).push_back(static_cast<double>(setup::global_cell(disc, c)));
   }
   const std::vector<la::Parcel> in = la::exchange(out);
   const auto cells = static_cast<std::size_t>(disc.mesh.num_cells());
@@ -113,12 +111,11 @@ SharedPass share_pass(const setup::Discretization& disc, std::span<const assembl
     const Index ge = setup::global_cell(disc, e);
     summary.insert(summary.end(),
                    {static_cast<double>(ge), static_cast<double>(end - k), critical, overshoot, largest});
+    const auto first = static_cast<std::ptrdiff_t>(own.size());
     for (std::size_t j = k; j < end; ++j) pack_bond(mine[j], ge, setup::global_cell(disc, mine[j].id.f), own);
     for (int p : holders.of(e)) {
-      auto it = std::find_if(out.begin(), out.end(), [&](const la::Parcel& q) { return q.process == p; });
-      if (it == out.end()) it = out.insert(out.end(), la::Parcel{p, {}});
-      for (std::size_t j = k; j < end; ++j)
-        pack_bond(mine[j], ge, setup::global_cell(disc, mine[j].id.f), it->values);
+      std::vector<double>& to = la::parcel_for(out, p);
+      to.insert(to.end(), own.begin() + first, own.end());
     }
     k = end;
   }

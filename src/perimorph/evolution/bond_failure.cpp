@@ -235,10 +235,9 @@ CrackArea BondFailure::crack_area(const RunState& state) const {
           counted[static_cast<std::size_t>(axis)].insert(key);
           continue;
         }
-        auto it = std::find_if(sent.begin(), sent.end(), [&](const la::Parcel& q) { return q.process == p; });
-        if (it == sent.end()) it = sent.insert(sent.end(), la::Parcel{p, {}});
-        it->values.insert(it->values.end(), {static_cast<double>(axis), static_cast<double>(key[0]),
-                                             static_cast<double>(key[1])});
+        std::vector<double>& to = la::parcel_for(sent, p);
+        to.insert(to.end(),
+                  {static_cast<double>(axis), static_cast<double>(key[0]), static_cast<double>(key[1])});
       }
     for (const la::Parcel& p : la::exchange(sent))
       for (std::size_t k = 0; k < p.values.size(); k += 3)

@@ -21,6 +21,13 @@ void check_mpi(int code, const char* what) {
 
 }  // namespace
 
+std::vector<double>& parcel_for(std::vector<Parcel>& parcels, int process) {
+  auto it =
+      std::find_if(parcels.begin(), parcels.end(), [&](const Parcel& p) { return p.process == process; });
+  if (it == parcels.end()) it = parcels.insert(parcels.end(), Parcel{process, {}});
+  return it->values;
+}
+
 std::vector<Parcel> exchange(const std::vector<Parcel>& outgoing) {
   std::vector<Parcel> incoming;
   const int size = world_size(), rank = world_rank();

@@ -16,6 +16,9 @@ struct Parcel {
   std::vector<double> values;
 };
 
+/// The values of the parcel for `process` in `parcels`, a new parcel if it has none.
+std::vector<double>& parcel_for(std::vector<Parcel>& parcels, int process);
+
 /// Sends each parcel of `outgoing` to its process (distinct processes, none
 /// this one; an empty parcel is not sent) and returns the parcels the other
 /// processes sent this one, ordered by sender (collective over
