@@ -9,6 +9,7 @@
 
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/evolution/bond_failure.hpp"
+#include "perimorph/evolution/floating_part_links.hpp"
 #include "perimorph/evolution/floating_parts.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/partition/partition.hpp"
@@ -243,7 +244,9 @@ TEST(PieceFracture, DecidesAndBreaksTheBondsOfTheParts) {
 // floating_parts_test: cut through at x = 2 (its right half held along x
 // only: a floating part), and with its last column stretched (its nodes left
 // with no stiffness along x). The dofs left without stiffness, the floating
-// parts and their pins are the parts', in the same order.
+// parts and their pins are the parts', in the same order, from the whole
+// graph's links and from those of the parts the held dofs may leave free
+// (evolution::links_of_loosely_held_parts, what the run gathers).
 TEST(PieceFracture, FindsWhatIsCutLooseAsTheParts) {
   const int processes = la::world_size(), rank = la::world_rank();
   if (processes == 1) GTEST_SKIP() << "one process runs on the whole model";
@@ -332,6 +335,28 @@ TEST(PieceFracture, FindsWhatIsCutLooseAsTheParts) {
     }
     EXPECT_EQ(got.parts, expected.parts);
     expect_same_names(got.pins, expected.pins, "pins");
+
+    // Given only the links of the parts the held dofs may leave free (the
+    // right half, held along x only, when cut through): the same parts and
+    // pins, without the held body's links.
+    std::vector<Vec3> loose_positions;
+    const auto loose_links = evolution::links_of_loosely_held_parts(piece, piece_failure.space(on_piece),
+                                                                    piece_held, &loose_positions);
+    const evolution::FloatingParts loose =
+        evolution::find_floating_parts(piece, loose_links, piece_held, piece_force, loose_positions);
+    EXPECT_EQ(loose.parts, expected.parts);
+    expect_same_names(loose.pins, expected.pins, "pins from the loosely held parts");
+    EXPECT_LT(loose_links.size(), piece_links.size()) << "the held body's links are gathered too";
+    std::vector<Index> loose_nodes;  // each node once, as in the whole graph's links
+    for (std::size_t k = 0; k < loose_links.size(); k += 2) loose_nodes.push_back(loose_links[k]);
+    std::sort(loose_nodes.begin(), loose_nodes.end());
+    EXPECT_EQ(std::adjacent_find(loose_nodes.begin(), loose_nodes.end()), loose_nodes.end())
+        << "a node twice";
+    if (cut_through) {
+      // The right half's nodes: those of its cells (x > 2) and no other.
+      for (std::size_t k = 0; k < loose_positions.size(); ++k) EXPECT_GE(loose_positions[k].x(), 2.0) << k;
+      EXPECT_GT(loose_links.size(), piece_links.size() / 4);
+    }
   }
 }
 

@@ -177,19 +177,6 @@ FractureFields BondFailure::fields(const RunState& state, std::span<const Index>
   return out;
 }
 
-namespace {
-
-/// The process that counts column `key` of broken faces normal to `axis`
-/// (crack_area): a hash of the column, spreading them over the processes.
-int column_counter(int axis, const std::array<Index, 2>& key, int processes) {
-  std::uint64_t h = static_cast<std::uint64_t>(key[0]) * 0x9E3779B97F4A7C15ULL;
-  h ^= (static_cast<std::uint64_t>(key[1]) + static_cast<std::uint64_t>(axis + 1)) * 0xC2B2AE3D27D4EB4FULL;
-  h ^= h >> 29;
-  return static_cast<int>(h % static_cast<std::uint64_t>(processes));
-}
-
-}  // namespace
-
 CrackArea BondFailure::crack_area(const RunState& state) const {
   CrackArea out;
   if (!disc_->mesh.structure) {
@@ -223,14 +210,14 @@ CrackArea BondFailure::crack_area(const RunState& state) const {
   std::array<double, 3> distinct{};
   for (std::size_t a = 0; a < 3; ++a) distinct[a] = static_cast<double>(columns[a].size());
   if (!decides_.empty()) {
-    // Each column counted by one process (column_counter), whichever
+    // Each column counted by one process (la::hashed_process), whichever
     // processes' cells have faces in it; the counts summed (whole numbers: exact).
     const int processes = la::world_size(), rank = la::world_rank();
     std::array<std::set<std::array<Index, 2>>, 3> counted;
     std::vector<la::Parcel> sent;
     for (int axis = 0; axis < 3; ++axis)
       for (const auto& key : columns[static_cast<std::size_t>(axis)]) {
-        const int p = column_counter(axis, key, processes);
+        const int p = la::hashed_process({key[0], key[1], axis}, processes);
         if (p == rank) {
           counted[static_cast<std::size_t>(axis)].insert(key);
           continue;

@@ -2,6 +2,7 @@
 
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/core/error.hpp"
+#include "perimorph/core/union_find.hpp"
 #include "perimorph/dofs/dof_map.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/setup/piece_model.hpp"
@@ -16,51 +17,6 @@
 namespace perimorph::evolution {
 
 namespace {
-
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), Index{0}); }
-  Index find(Index a) {
-    while (parent_[static_cast<std::size_t>(a)] != a) {
-      parent_[static_cast<std::size_t>(a)] =
-          parent_[static_cast<std::size_t>(parent_[static_cast<std::size_t>(a)])];
-      a = parent_[static_cast<std::size_t>(a)];
-    }
-    return a;
-  }
-  /// The smaller root becomes the parent, so a part's root is its smallest node.
-  void join(Index a, Index b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return;
-    if (b < a) std::swap(a, b);
-    parent_[static_cast<std::size_t>(b)] = a;
-  }
-
- private:
-  std::vector<Index> parent_;
-};
-
-constexpr int rigid_modes(int dim) {
-  return dim == 1 ? 1 : dim == 2 ? 3 : 6;
-}
-
-/// Value of each rigid-body mode at component d of a node at p (relative to
-/// the part's centre, in units of its size): translations, then rotations.
-Eigen::VectorXd mode_row(int dim, const Vec3& p, int d) {
-  Eigen::VectorXd r = Eigen::VectorXd::Zero(rigid_modes(dim));
-  r[d] = 1.0;
-  if (dim == 2) {
-    r[2] = d == 0 ? -p.y() : p.x();  // u = (−y, x)
-  } else if (dim == 3) {
-    const double x = p.x(), y = p.y(), z = p.z();
-    const double about_x[3] = {0.0, -z, y}, about_y[3] = {z, 0.0, -x}, about_z[3] = {-y, x, 0.0};
-    r[3] = about_x[d];
-    r[4] = about_y[d];
-    r[5] = about_z[d];
-  }
-  return r;
-}
 
 /// An orthonormal basis grown one vector at a time (modified Gram–Schmidt).
 struct Span {
@@ -78,6 +34,21 @@ struct Span {
 };
 
 }  // namespace
+
+Eigen::VectorXd rigid_mode_row(int dim, const Vec3& p, int d) {
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(rigid_modes(dim));
+  r[d] = 1.0;
+  if (dim == 2) {
+    r[2] = d == 0 ? -p.y() : p.x();  // u = (−y, x)
+  } else if (dim == 3) {
+    const double x = p.x(), y = p.y(), z = p.z();
+    const double about_x[3] = {0.0, -z, y}, about_y[3] = {z, 0.0, -x}, about_z[3] = {-y, x, 0.0};
+    r[3] = about_x[d];
+    r[4] = about_y[d];
+    r[5] = about_z[d];
+  }
+  return r;
+}
 
 std::vector<Index> stiffness_links(const setup::Discretization& model, const assembly::NonlocalSpace& space,
                                    std::span<const char> cells) {
@@ -193,7 +164,7 @@ FloatingParts find_floating_parts(const setup::Discretization& model, std::span<
   struct Floating {
     const std::vector<Index>* nodes;
     Vec3 centre;  ///< the nodes' positions are taken relative to it,
-    double size;  ///< scaled by the part's size
+    double size;  ///< scaled by the part's size (1 if a single point)
     Span span;    ///< of the held dofs' rigid-body rows
   };
   std::vector<Floating> floating;
@@ -209,7 +180,7 @@ FloatingParts find_floating_parts(const setup::Discretization& model, std::span<
     for (Index a : nodes)
       for (int d = 0; d < dim; ++d)
         if (is_held[static_cast<std::size_t>(a * dim + d)])
-          span.add(mode_row(dim, (coordinate(a) - centre) / size, d), 1e-8);
+          span.add(rigid_mode_row(dim, (coordinate(a) - centre) / size, d), kHeldSpanTolerance);
     if (static_cast<int>(span.basis.size()) == nr) continue;
     for (Index a : nodes)
       for (int d = 0; d < dim; ++d) floating_dofs.push_back(a * dim + d);
@@ -242,7 +213,7 @@ FloatingParts find_floating_parts(const setup::Discretization& model, std::span<
         for (Index a : nodes)
           for (int d = 0; d < dim; ++d) {
             const double F = force_at(a * dim + d);
-            const Eigen::VectorXd row = mode_row(dim, rel(a), d);
+            const Eigen::VectorXd row = rigid_mode_row(dim, rel(a), d);
             work += F * row.dot(m);
             scale += std::abs(F) * row.norm();
           }
@@ -267,12 +238,12 @@ FloatingParts find_floating_parts(const setup::Discretization& model, std::span<
     std::vector<Index> order(nodes);
     std::stable_sort(order.begin(), order.end(),
                      [&](Index a, Index b) { return rel(a).squaredNorm() > rel(b).squaredNorm(); });
-    for (double tol : {0.3, 1e-8})
+    for (double tol : {0.3, kHeldSpanTolerance})
       for (Index a : order)
         for (int d = 0; d < dim && static_cast<int>(span.basis.size()) < nr; ++d) {
           const Index dof = a * dim + d;
           if (is_held[static_cast<std::size_t>(dof)]) continue;
-          if (span.add(mode_row(dim, rel(a), d), tol)) {
+          if (span.add(rigid_mode_row(dim, rel(a), d), tol)) {
             out.pins.push_back(name[static_cast<std::size_t>(a)] * dim + d);
             is_held[static_cast<std::size_t>(dof)] = 1;
           }

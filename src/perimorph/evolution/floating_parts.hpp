@@ -13,10 +13,27 @@
 #include "perimorph/la/owned_dofs.hpp"
 #include "perimorph/setup/discretization.hpp"
 
+#include <Eigen/Core>
+
 #include <span>
 #include <vector>
 
 namespace perimorph::evolution {
+
+/// The rigid-body modes of a body in `dim` dimensions: 1, 3 or 6.
+constexpr int rigid_modes(int dim) {
+  return dim == 1 ? 1 : dim == 2 ? 3 : 6;
+}
+
+/// The value of each rigid-body mode at component d of a node at p (relative
+/// to the part's centre, in units of its size): translations, then rotations.
+Eigen::VectorXd rigid_mode_row(int dim, const Vec3& p, int d);
+
+/// A part is held when its held dofs' rigid_mode_rows span every mode: each
+/// row, in the order of the nodes' names, adds the part of it outside the
+/// span of those before when that is over this fraction of the row
+/// (modified Gram–Schmidt).
+inline constexpr double kHeldSpanTolerance = 1e-8;
 
 struct FloatingParts {
   int parts = 0;            ///< parts with at least one free rigid-body mode
@@ -42,7 +59,9 @@ std::vector<Index> stiffness_links(const setup::Discretization& model, const ass
 /// 16 bytes a node a part reaches). On one, stiffness_links of every cell. On
 /// a piece of the model (setup::cut_to_piece) the nodes are named by their
 /// keys (partition::PieceDofs; setup::dof_name names their dofs), and
-/// `positions` gets the position of each link's first node (40 bytes a node).
+/// `positions` gets the position of each link's first node (40 bytes a node);
+/// a run on pieces gathers only the links find_floating_parts needs
+/// (links_of_loosely_held_parts, floating_part_links.hpp).
 std::vector<Index> stiffness_links_over_processes(const setup::Discretization& model,
                                                   const assembly::NonlocalSpace& space,
                                                   std::vector<Vec3>* positions = nullptr);

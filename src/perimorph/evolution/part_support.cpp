@@ -3,6 +3,7 @@
 #include "perimorph/assembly/bond_stretch.hpp"
 #include "perimorph/core/error.hpp"
 #include "perimorph/evolution/cell_mechanisms.hpp"
+#include "perimorph/evolution/floating_part_links.hpp"
 #include "perimorph/evolution/floating_parts.hpp"
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/setup/piece_model.hpp"
@@ -164,7 +165,7 @@ Proposal PartSupport::inspect(const RunState& state, const system::ConstrainedSy
     held.insert(held.end(), prescribed.begin(), prescribed.end());
     std::sort(held.begin(), held.end());
     std::vector<Vec3> positions;  // a piece's links come with them
-    const std::vector<Index> links = stiffness_links_over_processes(*disc_, space, &positions);
+    const std::vector<Index> links = links_of_loosely_held_parts(*disc_, space, held, &positions);
     FloatingParts parts = find_floating_parts(*disc_, links, held, force, positions);
     pins_ = std::move(parts.pins);
     parts_ = parts.parts;
@@ -221,7 +222,7 @@ void PartSupport::rebind(const setup::Discretization& disc, RunState& state,
   std::sort(held.begin(), held.end());
   std::vector<Vec3> positions;
   const std::vector<Index> links =
-      stiffness_links_over_processes(disc, disc.nonlocal_space(&state.failed), &positions);
+      links_of_loosely_held_parts(disc, disc.nonlocal_space(&state.failed), held, &positions);
   const FloatingParts parts = find_floating_parts(disc, links, held, force, positions);
   system.hold(dofs_of(disc, parts.pins), false);
   const CellsToCheck cells = cells_of_failed_bonds(disc, state.failed_in_order);

@@ -28,6 +28,17 @@ std::vector<double>& parcel_for(std::vector<Parcel>& parcels, int process) {
   return it->values;
 }
 
+int hashed_process(std::initializer_list<std::int64_t> key, int processes) {
+  std::uint64_t h = 0x9E3779B97F4A7C15ULL;
+  for (std::int64_t k : key) {  // splitmix64's finalizer over each part
+    h ^= static_cast<std::uint64_t>(k) + 0x9E3779B97F4A7C15ULL + (h << 6) + (h >> 2);
+    h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    h = (h ^ (h >> 27)) * 0x94D049BB133111EBULL;
+    h ^= h >> 31;
+  }
+  return static_cast<int>(h % static_cast<std::uint64_t>(processes));
+}
+
 std::vector<Parcel> exchange(const std::vector<Parcel>& outgoing) {
   std::vector<Parcel> incoming;
   const int size = world_size(), rank = world_rank();

@@ -6,6 +6,8 @@
 // non-blocking consensus: no P × P table of counts), then the lists travel
 // directly. And a gather onto process 0 alone, for what only it writes.
 
+#include <cstdint>
+#include <initializer_list>
 #include <vector>
 
 namespace perimorph::la {
@@ -18,6 +20,11 @@ struct Parcel {
 
 /// The values of the parcel for `process` in `parcels`, a new parcel if it has none.
 std::vector<double>& parcel_for(std::vector<Parcel>& parcels, int process);
+
+/// A process chosen by a hash of `key` (a few whole numbers), the same on
+/// every process: the one that handles a thing several processes may hold,
+/// spreading such things evenly over the processes.
+int hashed_process(std::initializer_list<std::int64_t> key, int processes);
 
 /// Sends each parcel of `outgoing` to its process (distinct processes, none
 /// this one; an empty parcel is not sent) and returns the parcels the other
