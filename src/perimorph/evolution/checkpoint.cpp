@@ -285,30 +285,18 @@ void LocalDamage::save(core::BinaryWriter& out) const {
   out.put<int>(newton_failures_);
   out.put<int>(newton_failed_in_);
   out.put<double>(largest_);
-  std::vector<Index> cells;
-  std::vector<int> points;
-  for (const auto& [c, q] : newly_critical_) {
-    cells.push_back(c);
-    points.push_back(q);
-  }
-  out.put_vector(cells);
-  out.put_vector(points);
 }
 
 void LocalDamage::restore(const setup::Discretization& disc, core::BinaryReader& in) {
   in.expect("local damage");
   disc_ = &disc;
   decides_ = setup::cells_of_process(disc, la::world_size(), la::world_rank());
+  holders_ = CellHolders(disc, decides_);
   newton_steps_ = in.get<int>();
   newton_failures_ = in.get<int>();
   newton_failed_in_ = in.get<int>();
   largest_ = in.get<double>();
-  const auto cells = in.get_vector<Index>();
-  const auto points = in.get_vector<int>();
-  if (cells.size() != points.size()) in.fail("critical points that do not add up");
-  newly_critical_.clear();
-  for (std::size_t k = 0; k < cells.size(); ++k) newly_critical_.emplace_back(cells[k], points[k]);
-  proposed_.clear();
+  proposed_ = {};
 }
 
 }  // namespace perimorph::evolution

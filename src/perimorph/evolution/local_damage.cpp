@@ -53,31 +53,6 @@ double potential(const system::ConstrainedSystem& system, std::span<const double
 
 }  // namespace
 
-/// Every process's changes (each from its own cells, in point order) on every
-/// process, in whole-model point order: the one-process order. On a piece of
-/// the model (setup::cut_to_piece) each point is given back in its numbers,
-/// kNotHeld where it lacks the cell.
-std::vector<LocalDamage::Change> LocalDamage::gather_changes(const std::vector<Change>& mine) const {
-  constexpr std::size_t packed_size = 7;
-  std::vector<double> packed;
-  packed.reserve(mine.size() * packed_size);
-  for (const Change& ch : mine)
-    packed.insert(packed.end(), {static_cast<double>(ch.whole), ch.d, ch.old, ch.Y, ch.volume, ch.dissipated,
-                                 ch.critical ? 1.0 : 0.0});
-  const std::vector<double> all = la::all_gather(packed);
-  const auto npts = static_cast<std::size_t>(disc_->damage->points_per_cell);
-  std::vector<Change> out(all.size() / packed_size);
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    const double* v = all.data() + i * packed_size;
-    const auto whole = static_cast<std::size_t>(v[0]);
-    const Index c = setup::local_cell(*disc_, static_cast<Index>(whole / npts));
-    const std::size_t point = c < 0 ? kNotHeld : static_cast<std::size_t>(c) * npts + whole % npts;
-    out[i] = {point, whole, v[1], v[2], v[3], v[4], v[5], v[6] != 0.0};
-  }
-  std::sort(out.begin(), out.end(), [](const Change& a, const Change& b) { return a.whole < b.whole; });
-  return out;
-}
-
 void LocalDamage::ledger_move(RunState& state, const system::ConstrainedSystem& system,
                               std::span<const double> u_newton) const {
   state.energy.overshoot -=
@@ -88,7 +63,8 @@ LocalDamage::LocalDamage(const setup::Discretization& disc)
     : disc_(&disc),
       tolerance_(disc.config.damage.tolerance),
       newton_(disc.config.damage.solver == casefile::DamageSolver::newton),
-      decides_(setup::cells_of_process(disc, la::world_size(), la::world_rank())) {
+      decides_(setup::cells_of_process(disc, la::world_size(), la::world_rank())),
+      holders_(disc, decides_) {
   PERIMORPH_ASSERT(disc.damage.has_value(), "LocalDamage needs a damage model");
 }
 
@@ -96,11 +72,10 @@ void LocalDamage::rebind(const setup::Discretization& disc, RunState& /*state*/,
                          system::ConstrainedSystem& /*system*/) {
   disc_ = &disc;
   decides_ = setup::cells_of_process(disc, la::world_size(), la::world_rank());  // a new piece: new cells
+  holders_ = CellHolders(disc, decides_);
 }
 
 Proposal LocalDamage::inspect(const RunState& state, const system::ConstrainedSystem& /*system*/) {
-  proposed_.clear();
-  largest_ = 0.0;
   const setup::DamageModel& dm = *disc_->damage;
   const Index ncells = disc_->mesh.num_cells();
   const int npts = dm.points_per_cell;
@@ -108,7 +83,7 @@ Proposal LocalDamage::inspect(const RunState& state, const system::ConstrainedSy
   const assembly::LocalSpace space = disc_->local_space();
   // Each cell's points are independent: computed in parallel, gathered in
   // cell order (the same proposal for any thread count).
-  std::vector<std::vector<Change>> per_cell(static_cast<std::size_t>(ncells));
+  std::vector<std::vector<DamageChange>> per_cell(static_cast<std::size_t>(ncells));
 #pragma omp parallel
   {
     std::vector<double> strain(static_cast<std::size_t>(npts * nv)), volume(static_cast<std::size_t>(npts));
@@ -130,16 +105,16 @@ Proposal LocalDamage::inspect(const RunState& state, const system::ConstrainedSy
         if (d <= old) continue;
         const double w = volume[p];
         const double dissipated = (fem::damage_dissipation(L, d) - fem::damage_dissipation(L, old)) * w;
-        per_cell[static_cast<std::size_t>(c)].push_back(
-            {k, whole_cell * n + p, d, old, Y, w, dissipated, d >= L.d_c});
+        per_cell[static_cast<std::size_t>(c)].push_back({k, whole_cell * n + p, d, old, Y, w, dissipated});
       }
     }
   }
-  for (auto& changes : per_cell) proposed_.insert(proposed_.end(), changes.begin(), changes.end());
-  if (!decides_.empty()) proposed_ = gather_changes(proposed_);
-  for (const Change& ch : proposed_) largest_ = std::max(largest_, ch.d - ch.old);
-  if (largest_ <= tolerance_) proposed_.clear();
-  return {proposed_.size()};
+  std::vector<DamageChange> mine;
+  for (auto& changes : per_cell) mine.insert(mine.end(), changes.begin(), changes.end());
+  proposed_ = share_damage(*disc_, mine, npts, holders_, !decides_.empty());
+  largest_ = proposed_.largest;
+  if (largest_ <= tolerance_) proposed_ = {};
+  return {proposed_.count};
 }
 
 Effect LocalDamage::apply(RunState& state, system::ConstrainedSystem& system) {
@@ -165,38 +140,26 @@ Effect LocalDamage::apply(RunState& state, system::ConstrainedSystem& system) {
   const int npts = dm.points_per_cell;
   const int dim = disc_->dim();
   const int nv = fem::voigt_size(dim);
-  newly_critical_.clear();
   // Δd C₀ at the changed points (0 elsewhere) of the changed cells.
   fem::ConstitutiveField delta(dim, disc_->mesh.num_cells(), npts);
   const int zero = delta.add_tensor(Eigen::MatrixXd::Zero(nv, nv));
   for (Index c = 0; c < disc_->mesh.num_cells(); ++c) delta.set_cell(c, zero);
   std::vector<char> changed(static_cast<std::size_t>(disc_->mesh.num_cells()), 0);
   std::vector<Eigen::MatrixXd> C(static_cast<std::size_t>(npts));
-  EnergyLedger& ledger = state.energy;
   const auto n = static_cast<std::size_t>(npts);
-  // The ledger books every change (on a piece, those of cells it lacks too),
-  // in the whole model's point order.
-  for (const Change& ch : proposed_) {
-    // At fixed u, the stiffness drop releases Y Δd per volume; what the
-    // threshold does not dissipate is the overshoot of the finite step (≥ 0).
-    ledger.damage_dissipated += ch.dissipated;
-    ledger.overshoot += ch.Y * (ch.d - ch.old) * ch.volume - ch.dissipated;
-    if (ch.critical)
-      newly_critical_.emplace_back(static_cast<Index>(ch.whole / n), static_cast<int>(ch.whole % n));
-  }
-  for (std::size_t first = 0; first < proposed_.size();) {
-    if (proposed_[first].point == kNotHeld) {
-      ++first;
-      continue;
-    }
-    const auto c = static_cast<Index>(proposed_[first].point / n);
+  // At fixed u, the stiffness drop releases Y Δd per volume; what the
+  // threshold does not dissipate is the overshoot of the finite step (≥ 0).
+  // Booked over the model (on a piece, the cells it lacks too).
+  state.energy.damage_dissipated += proposed_.dissipated;
+  state.energy.overshoot += proposed_.overshoot;
+  const std::vector<DamageChange>& held = proposed_.held;
+  for (std::size_t first = 0; first < held.size();) {
+    const auto c = static_cast<Index>(held[first].point / n);
     const Eigen::MatrixXd& C0 = dm.C0[static_cast<std::size_t>(dm.law_of(c))];
     for (auto& m : C) m = Eigen::MatrixXd::Zero(nv, nv);
     std::size_t last = first;
-    for (; last < proposed_.size() && proposed_[last].point != kNotHeld &&
-           proposed_[last].point / n == static_cast<std::size_t>(c);
-         ++last) {
-      const Change& ch = proposed_[last];
+    for (; last < held.size() && held[last].point / n == static_cast<std::size_t>(c); ++last) {
+      const DamageChange& ch = held[last];
       C[ch.point % n] = (ch.d - ch.old) * C0;
       state.history[ch.point] = ch.d;
     }

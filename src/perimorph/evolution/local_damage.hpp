@@ -11,6 +11,7 @@
 // solution; fig. 3.22 alternates the two).
 
 #include "perimorph/evolution/component.hpp"
+#include "perimorph/evolution/damage_decisions.hpp"
 #include "perimorph/setup/discretization.hpp"
 
 #include <span>
@@ -55,30 +56,12 @@ class LocalDamage final : public Component {
   int newton_failures() const { return newton_failures_; }
   /// The largest growth of d the last inspect found (converged: ≤ tolerance).
   double largest_change() const { return largest_; }
-  /// Local quadrature points whose d reached d_c in the last apply (cell in
-  /// the whole mesh's numbers, point).
-  const std::vector<std::pair<Index, int>>& newly_critical() const { return newly_critical_; }
   /// The damage fields of each of `cells` (in that order; every cell if empty).
   DamageFields fields(const RunState& state, std::span<const Index> cells = {}) const;
 
  private:
-  /// A growth of d at one point, with what it books in the ledger (computed
-  /// by the process that decides the point's cell, so that a piece of the
-  /// model books the points it does not hold too).
-  struct Change {
-    std::size_t point;  ///< index into RunState::history; kNotHeld on a piece that lacks its cell
-    std::size_t whole;  ///< the same in the whole model (whole-mesh cell × points + point)
-    double d;           ///< the new value
-    double old;         ///< the value it replaces
-    double Y;           ///< the damage force that drove it
-    double volume;      ///< w |J| scale of the point
-    double dissipated;  ///< ∫ (k0 + k1 d) dd × volume, from old to d
-    bool critical;      ///< d ≥ d_c
-  };
-  static constexpr std::size_t kNotHeld = static_cast<std::size_t>(-1);
   void ledger_move(RunState& state, const system::ConstrainedSystem& system,
                    std::span<const double> u_newton) const;
-  std::vector<Change> gather_changes(const std::vector<Change>& mine) const;
   const setup::Discretization* disc_;  ///< non-owning: the run's current discretization
   double tolerance_ = 0.0;
   bool newton_ = false;
@@ -86,11 +69,12 @@ class LocalDamage final : public Component {
   int newton_failed_in_ = -1;  ///< the increment where Newton last failed: not tried again there
   double largest_ = 0.0;
   /// The cells this process updates (1), empty on one process: on several,
-  /// each process computes the strains of its own cells and the changes are
-  /// gathered (partition::cells_of_part), so each point is looked at once.
+  /// each process computes the strains of its own cells (partition::cells_of_part),
+  /// so each point is looked at once, and sends the changes to the processes
+  /// holding the cells (damage_decisions.hpp).
   std::vector<char> decides_;
-  std::vector<Change> proposed_;
-  std::vector<std::pair<Index, int>> newly_critical_;
+  CellHolders holders_;
+  SharedDamage proposed_;
 };
 
 }  // namespace perimorph::evolution

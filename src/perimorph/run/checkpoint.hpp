@@ -29,7 +29,7 @@ namespace perimorph::run {
 
 /// Bumped whenever the layout changes: an older checkpoint is refused, not
 /// misread.
-inline constexpr std::uint32_t kCheckpointVersion = 2;
+inline constexpr std::uint32_t kCheckpointVersion = 3;
 
 /// DIRECTORY/BASENAME.checkpoint.
 std::string checkpoint_path(const std::string& directory, const std::string& basename);
