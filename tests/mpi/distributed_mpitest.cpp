@@ -30,6 +30,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <Eigen/Cholesky>
+#include <cstdio>
 
 #include <cmath>
 #include <limits>
@@ -520,8 +521,29 @@ TEST(OnEveryProcess, TheLowestFailingProcessIsReportedByProcessZero) {
 }  // namespace
 }  // namespace perimorph
 
+namespace {
+
+/// On several processes, a fatal failure (an ASSERT_*, or an exception out of
+/// a test) on one process returns from its test while the others go on to the
+/// next collective call and wait there until ctest's timeout: every process
+/// is stopped at once instead, after the failure has been printed.
+class StopEveryProcessOnAFatalFailure final : public ::testing::EmptyTestEventListener {
+ public:
+  void OnTestPartResult(const ::testing::TestPartResult& result) override {
+    if (!result.fatally_failed() || perimorph::la::world_size() == 1) return;
+    std::fprintf(stderr, "process %d: a fatal failure; stopping every process (%s:%d)\n",
+                 perimorph::la::world_rank(), result.file_name() ? result.file_name() : "?",
+                 result.line_number());
+    perimorph::la::abort_every_process(1);
+  }
+};
+
+}  // namespace
+
 int main(int argc, char** argv) {
   ::testing::InitGoogleTest(&argc, argv);
   perimorph::la::PetscSession petsc(argc, argv);
+  // After gtest's printer, which reports the failure first.
+  ::testing::UnitTest::GetInstance()->listeners().Append(new StopEveryProcessOnAFatalFailure);
   return RUN_ALL_TESTS();
 }

@@ -7,6 +7,8 @@
 #include <petscsys.h>
 
 #include <cctype>
+#include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <iterator>
 #include <sstream>
@@ -125,6 +127,13 @@ int world_size() {
   PetscMPIInt size = 1;
   if (petsc_running()) MPI_Comm_size(PETSC_COMM_WORLD, &size);
   return size;
+}
+
+void abort_every_process(int status) {
+  std::fflush(stdout);
+  std::fflush(stderr);
+  MPI_Abort(PETSC_COMM_WORLD, status);
+  std::abort();  // MPI_Abort does not return
 }
 
 int world_rank() {

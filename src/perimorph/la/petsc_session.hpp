@@ -42,6 +42,10 @@ int world_size();
 int world_rank();
 /// Waits until every rank of PETSC_COMM_WORLD has reached it.
 void barrier();
+/// Stops every rank of PETSC_COMM_WORLD at once with exit status `status`
+/// (MPI_Abort): for a failure met by one rank while the others may be
+/// waiting for it in a collective call (the MPI tests' harness).
+[[noreturn]] void abort_every_process(int status);
 /// The largest of `value` over the ranks of PETSC_COMM_WORLD (collective;
 /// `value` itself on one rank).
 int max_over_processes(int value);
