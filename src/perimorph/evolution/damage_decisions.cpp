@@ -24,22 +24,24 @@ SharedDamage share_damage(const setup::Discretization& disc, std::span<const Dam
   // and the changes for each process holding the cell.
   std::vector<double> summary;
   std::vector<la::Parcel> out;
+  std::vector<double> sent;  // the cell's changes, packed once for its holders (most cells have none)
   for (std::size_t k = 0; k < mine.size();) {
     const std::size_t cell = mine[k].point / npts;
     PERIMORPH_ASSERT(k == 0 || mine[k - 1].point < mine[k].point, "an update's changes come in point order");
+    const std::span<const int> to_holders = holders.of(static_cast<Index>(cell));
     std::size_t end = k;
     double dissipated = 0.0, overshoot = 0.0, largest = 0.0;
-    std::vector<double> sent;
+    sent.clear();
     for (; end < mine.size() && mine[end].point / npts == cell; ++end) {
       const DamageChange& ch = mine[end];
       dissipated += ch.dissipated;
       overshoot += ch.Y * (ch.d - ch.old) * ch.volume - ch.dissipated;
       largest = std::max(largest, ch.d - ch.old);
-      sent.insert(sent.end(), {static_cast<double>(ch.whole), ch.d, ch.old});
+      if (!to_holders.empty()) sent.insert(sent.end(), {static_cast<double>(ch.whole), ch.d, ch.old});
     }
     summary.insert(summary.end(), {static_cast<double>(mine[k].whole / npts), static_cast<double>(end - k),
                                    dissipated, overshoot, largest});
-    for (int p : holders.of(static_cast<Index>(cell))) {
+    for (int p : to_holders) {
       std::vector<double>& to = la::parcel_for(out, p);
       to.insert(to.end(), sent.begin(), sent.end());
     }
