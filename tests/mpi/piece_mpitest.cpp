@@ -24,6 +24,7 @@
 #include "perimorph/partition/dof_layout.hpp"
 #include "perimorph/system/piece_distribution.hpp"
 #include "perimorph/system/stiffness.hpp"
+#include "perimorph/system/whole_numbering.hpp"
 #include "support/owned_rows.hpp"
 #include "support/pieces.hpp"
 
@@ -121,6 +122,80 @@ TEST_P(Pieces, AssembleTheWholeModelsMatrixBitForBit) {
                           [&](Index c) { return piece.part.global_cell[static_cast<std::size_t>(c)]; }));
   ASSERT_FALSE(expected.empty());
   EXPECT_TRUE(got == expected) << "process " << part << " of " << parts;
+}
+
+bool same(const la::Matrix::Replicated& a, const la::Matrix::Replicated& b) {
+  return a.pattern.block_size == b.pattern.block_size && a.pattern.row_offsets == b.pattern.row_offsets &&
+         a.pattern.columns == b.pattern.columns &&
+         std::equal(a.values.begin(), a.values.end(), b.values.begin(), b.values.end(),
+                    [](double x, double y) { return std::memcmp(&x, &y, sizeof(double)) == 0; });
+}
+
+// What a checkpoint of a run on pieces gathers (run/whole_state.hpp): the
+// matrix and the vectors in the whole model's numbering, every process's
+// share, on every process or on process 0 alone (la::Onto::process_zero),
+// where the others then hold nothing whole.
+TEST_P(Pieces, GatherTheWholeMatrixAndVectorsOnEveryProcessOrOnProcessZeroAlone) {
+  const auto whole = box(GetParam());
+  const auto flags = testing::mixed_continuity(whole);
+  const dofs::DofMap dm(whole, whole.dim(), flags);
+  const int parts = la::world_size(), part = la::world_rank(), bs = whole.dim();
+  const auto p = partition::coordinate_bisection(whole, parts);
+  const auto whole_d = system::distribution_of(partition::dof_numbering(dm, p), part);
+  const auto piece = testing::make_piece(whole, flags, p, part, bs);
+  const la::Matrix K = assemble(piece.part.mesh, piece.dofmap, system::piece_distribution(piece.dofs),
+                                [&](Index c) { return piece.part.global_cell[static_cast<std::size_t>(c)]; });
+  const la::Matrix K_whole = assemble(whole, dm, whole_d, [](Index c) { return c; });
+  const la::Matrix::Replicated expected = K_whole.replicated();
+  ASSERT_FALSE(expected.values.empty());
+  // The copy against the dense whole matrix (MatGetValues, not the copy's
+  // code): each block row's columns ascending, every stored entry the dense
+  // one, every nonzero stored.
+  const Eigen::MatrixXd dense = K_whole.to_dense();
+  const auto& pattern = expected.pattern;
+  std::size_t at = 0;
+  Index stored_nonzeros = 0;
+  for (Index b = 0; b < pattern.num_block_rows(); ++b) {
+    const auto cols = pattern.row(b);
+    EXPECT_TRUE(std::is_sorted(cols.begin(), cols.end()) &&
+                std::adjacent_find(cols.begin(), cols.end()) == cols.end())
+        << "block row " << b;
+    for (int k = 0; k < bs; ++k)
+      for (Index c : cols)
+        for (int l = 0; l < bs; ++l, ++at) {
+          EXPECT_EQ(expected.values[at], dense(b * bs + k, c * bs + l)) << "row " << b * bs + k;
+          stored_nonzeros += expected.values[at] != 0.0 ? 1 : 0;
+        }
+  }
+  EXPECT_EQ(stored_nonzeros, (dense.array() != 0.0).count());
+
+  const system::WholeNumbering every(piece.dofs, bs), zero(piece.dofs, bs, la::Onto::process_zero);
+  EXPECT_TRUE(same(every.whole(K), expected)) << "process " << part;
+  const la::Matrix::Replicated on_zero = zero.whole(K);
+  // Each owned dof's value its name (key × bs + component): the whole vector
+  // holds at whole dof w the name of w.
+  std::vector<double> owned;
+  for (std::size_t n = 0; n < piece.dofs.key.size(); ++n)
+    if (piece.dofs.owned[n])
+      for (int k = 0; k < bs; ++k) owned.push_back(static_cast<double>(piece.dofs.key[n] * bs + k));
+  const std::vector<double> v = every.whole(owned), v_zero = zero.whole(owned);
+  ASSERT_EQ(static_cast<Index>(v.size()), dm.num_dofs());
+  for (Index w = 0; w < dm.num_dofs(); ++w) {
+    EXPECT_EQ(v[static_cast<std::size_t>(w)], static_cast<double>(every.name_of_whole(w)))
+        << "whole dof " << w;
+    EXPECT_EQ(every.whole_of_name(every.name_of_whole(w)), w);
+  }
+  if (part == 0) {
+    EXPECT_TRUE(same(on_zero, expected));
+    EXPECT_EQ(v_zero, v);
+    EXPECT_EQ(zero.whole_dofs(), every.whole_dofs());
+  } else {
+    EXPECT_TRUE(on_zero.values.empty() && on_zero.pattern.columns.empty() &&
+                on_zero.pattern.row_offsets.size() == 1)
+        << "process " << part << " holds a whole matrix";
+    EXPECT_TRUE(v_zero.empty()) << "process " << part << " holds a whole vector";
+    EXPECT_EQ(zero.whole_dofs(), 0);
+  }
 }
 
 /// u of K u = f with u_x = 0.05 on xmax and u = 0 on xmin (the mesh's node

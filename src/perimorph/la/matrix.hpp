@@ -20,6 +20,7 @@
 #include "perimorph/assembly/inserter.hpp"
 #include "perimorph/assembly/sparsity.hpp"
 #include "perimorph/la/distribution.hpp"
+#include "perimorph/la/neighbour_exchange.hpp"
 #include "perimorph/la/petsc_fwd.hpp"
 #include "perimorph/la/vector.hpp"
 
@@ -125,8 +126,10 @@ class Matrix final : public assembly::MatrixInserter {
   /// The same in another numbering of the dof nodes: `node_of_distributed`
   /// names the node of each distributed dof node (a permutation; on a piece
   /// of the model, whose assembly numbering covers the piece only, the whole
-  /// model's: system::WholeNumbering). Collective.
-  Replicated replicated(std::span<const Index> node_of_distributed) const;
+  /// model's: system::WholeNumbering), read only where the copy goes. With
+  /// Onto::process_zero, the copy is process 0's alone (the others send their
+  /// rows and return an empty copy, holding nothing whole). Collective.
+  Replicated replicated(std::span<const Index> node_of_distributed, Onto onto = Onto::every_process) const;
   /// The matrix of `r`, an exact copy: Matrix(pattern) with its values, or,
   /// with a distribution, Matrix(pattern, distribution), each process setting
   /// the rows it owns (collective). Throws Error if the values do not fit.

@@ -20,7 +20,7 @@ Matrix::Replicated Matrix::replicated() const {
   return replicated({});
 }
 
-Matrix::Replicated Matrix::replicated(std::span<const Index> node_of_distributed) const {
+Matrix::Replicated Matrix::replicated(std::span<const Index> node_of_distributed, Onto onto) const {
   Replicated out;
   if (!distribution_) {
     out.pattern = block_pattern();
@@ -32,6 +32,28 @@ Matrix::Replicated Matrix::replicated(std::span<const Index> node_of_distributed
   release_view();
   PetscInt bs = 1;
   PM_PETSC(MatGetBlockSize(m_, &bs));
+  // This process's rows in the distributed numbering, each as [row, count,
+  // columns..., values...] (the numbers exact in doubles below 2^53): the
+  // receiver renumbers them, so that a sender needs no whole-length map.
+  PetscInt rstart = 0, rend = 0;
+  PM_PETSC(MatGetOwnershipRange(m_, &rstart, &rend));
+  std::vector<double> mine;
+  for (PetscInt r = rstart; r < rend; ++r) {
+    PetscInt ncols = 0;
+    const PetscInt* cols = nullptr;
+    const PetscScalar* vals = nullptr;
+    PM_PETSC(MatGetRow(m_, r, &ncols, &cols, &vals));
+    mine.push_back(static_cast<double>(r));
+    mine.push_back(static_cast<double>(ncols));
+    for (PetscInt j = 0; j < ncols; ++j) mine.push_back(static_cast<double>(cols[j]));
+    mine.insert(mine.end(), vals, vals + ncols);
+    PM_PETSC(MatRestoreRow(m_, r, &ncols, &cols, &vals));
+  }
+  const std::vector<double> all = gather_onto(mine, onto);
+  out.pattern.block_size = static_cast<int>(bs);
+  out.pattern.row_offsets.assign(1, 0);
+  if (!receives(onto)) return out;
+
   std::vector<Index> to_assembly;
   if (node_of_distributed.empty()) {
     to_assembly = assembly_rows();
@@ -43,44 +65,24 @@ Matrix::Replicated Matrix::replicated(std::span<const Index> node_of_distributed
             node_of_distributed[d] * bs + k;
   }
   const auto n = static_cast<Index>(to_assembly.size());
-  // This process's rows, each as [row, count, columns..., values...] (the
-  // numbers exact in doubles below 2^53), its columns ascending.
-  PetscInt rstart = 0, rend = 0;
-  PM_PETSC(MatGetOwnershipRange(m_, &rstart, &rend));
-  std::vector<double> mine;
-  std::vector<std::pair<Index, double>> row;
-  for (PetscInt r = rstart; r < rend; ++r) {
-    PetscInt ncols = 0;
-    const PetscInt* cols = nullptr;
-    const PetscScalar* vals = nullptr;
-    PM_PETSC(MatGetRow(m_, r, &ncols, &cols, &vals));
-    row.clear();
-    for (PetscInt j = 0; j < ncols; ++j)
-      row.emplace_back(to_assembly[static_cast<std::size_t>(cols[j])], vals[j]);
-    PM_PETSC(MatRestoreRow(m_, r, &ncols, &cols, &vals));
-    std::sort(row.begin(), row.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    mine.push_back(static_cast<double>(to_assembly[static_cast<std::size_t>(r)]));
-    mine.push_back(static_cast<double>(row.size()));  // (MatRestoreRow zeroed ncols)
-    for (const auto& e : row) mine.push_back(static_cast<double>(e.first));
-    for (const auto& e : row) mine.push_back(e.second);
-  }
-  const std::vector<double> all = all_gather(mine);
   std::vector<std::size_t> at(static_cast<std::size_t>(n), all.size());  // each row's record
   for (std::size_t k = 0; k < all.size(); k += 2 + 2 * static_cast<std::size_t>(all[k + 1]))
-    at[static_cast<std::size_t>(all[k])] = k;
-  out.pattern.block_size = static_cast<int>(bs);
-  out.pattern.row_offsets.assign(1, 0);
+    at[static_cast<std::size_t>(to_assembly[static_cast<std::size_t>(all[k])])] = k;
+  std::vector<std::pair<Index, double>> row;
   for (Index r = 0; r < n; ++r) {
     const std::size_t k = at[static_cast<std::size_t>(r)];
     PERIMORPH_ASSERT(k < all.size(), "a row of the distributed matrix no process holds");
     const auto ncols = static_cast<std::size_t>(all[k + 1]);
+    row.clear();
+    for (std::size_t j = 0; j < ncols; ++j)
+      row.emplace_back(to_assembly[static_cast<std::size_t>(all[k + 2 + j])], all[k + 2 + ncols + j]);
+    std::sort(row.begin(), row.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     if (r % bs == 0) {
       for (std::size_t j = 0; j < ncols; j += static_cast<std::size_t>(bs))
-        out.pattern.columns.push_back(static_cast<Index>(all[k + 2 + j]) / bs);
+        out.pattern.columns.push_back(row[j].first / bs);
       out.pattern.row_offsets.push_back(static_cast<Index>(out.pattern.columns.size()));
     }
-    out.values.insert(out.values.end(), all.begin() + static_cast<std::ptrdiff_t>(k + 2 + ncols),
-                      all.begin() + static_cast<std::ptrdiff_t>(k + 2 + 2 * ncols));
+    for (const auto& e : row) out.values.push_back(e.second);
   }
   return out;
 }

@@ -108,6 +108,14 @@ std::vector<double> gather_on_process_zero(const std::vector<double>& mine) {
   return all;
 }
 
+std::vector<double> gather_onto(const std::vector<double>& mine, Onto onto) {
+  return onto == Onto::every_process ? all_gather(mine) : gather_on_process_zero(mine);
+}
+
+bool receives(Onto onto) {
+  return onto == Onto::every_process || world_rank() == 0;
+}
+
 double largest_over_processes(double value) {
   if (world_size() == 1) return value;
   double out = value;

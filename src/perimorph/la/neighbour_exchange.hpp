@@ -36,6 +36,17 @@ std::vector<Parcel> exchange(const std::vector<Parcel>& outgoing);
 /// empty on the others (collective; `mine` itself on one process).
 std::vector<double> gather_on_process_zero(const std::vector<double>& mine);
 
+/// Where a gathered whole goes: to every process, or to process 0 alone (what
+/// only it writes, as a checkpoint: the others then hold nothing whole).
+enum class Onto { every_process, process_zero };
+
+/// Every process's `mine`, one after the other in rank order, onto `onto`
+/// (la::all_gather or gather_on_process_zero; collective).
+std::vector<double> gather_onto(const std::vector<double>& mine, Onto onto);
+
+/// Whether this process receives what is gathered onto `onto`.
+bool receives(Onto onto);
+
 /// The largest of `value` over the processes (collective; exact).
 double largest_over_processes(double value);
 

@@ -32,8 +32,10 @@ void QuasiStaticRun::checkpoint_if_due() {
 void QuasiStaticRun::save_checkpoint() {
   // Process 0 writes it; every process takes part in gathering the
   // distributed system and the vectors a process holds at its halo only,
-  // in the whole model's numbers (on a piece, run::WholeState's).
-  const std::optional<WholeState> whole_of = disc_->piece ? std::optional<WholeState>(*disc_) : std::nullopt;
+  // in the whole model's numbers (on a piece, run::WholeState's, onto
+  // process 0 alone: the others write nothing and hold nothing whole).
+  const std::optional<WholeState> whole_of =
+      disc_->piece ? std::optional<WholeState>(std::in_place, *disc_, la::Onto::process_zero) : std::nullopt;
   std::optional<io::AtomicFile> file;
   la::on_process_zero([&] { file.emplace(checkpoint_path_); });
   core::BinaryWriter out([&](std::string_view bytes) {

@@ -6,36 +6,13 @@
 #include "perimorph/setup/piece_model.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cstddef>
 
 namespace perimorph::run {
 
-namespace {
-
-/// Whole-model integers (≥ 0) from the one process that holds each (the
-/// others pass −1): exact as doubles below 2⁵³.
-std::vector<Index> from_owners(const std::vector<Index>& mine) {
-  std::vector<double> v(mine.size());
-  for (std::size_t k = 0; k < mine.size(); ++k) v[k] = mine[k] < 0 ? -0.0 : static_cast<double>(mine[k]);
-  const std::vector<double> all = la::from_owners(std::move(v));
-  std::vector<Index> out(all.size());
-  for (std::size_t k = 0; k < all.size(); ++k) {
-    PERIMORPH_ASSERT(!std::signbit(all[k]), "a held dof whose node no process owns");
-    out[k] = static_cast<Index>(all[k]);
-  }
-  return out;
-}
-
-}  // namespace
-
-WholeState::WholeState(const setup::Discretization& piece)
-    : piece_(&piece), numbering_(piece.piece->dofs, piece.dim()) {
+WholeState::WholeState(const setup::Discretization& piece, la::Onto onto)
+    : piece_(&piece), onto_(onto), numbering_(piece.piece->dofs, piece.dim(), onto) {
   cells_ = static_cast<Index>(la::sum_over_processes({static_cast<double>(piece.piece->part_cells())})[0]);
-}
-
-bool WholeState::owns_dof(Index dof) const {
-  return piece_->piece->dofs.owned[static_cast<std::size_t>(dof / piece_->dim())] != 0;
 }
 
 evolution::RunState WholeState::whole(const evolution::RunState& state,
@@ -44,8 +21,9 @@ evolution::RunState WholeState::whole(const evolution::RunState& state,
   out.increment = state.increment;
   out.load_factor = state.load_factor;
   out.alpha = state.alpha;
+  const bool receives = la::receives(onto_);
   out.u = numbering_.whole(owned_u);
-  out.num_cells = cells_;
+  out.num_cells = receives ? cells_ : 0;
   out.failed = {};
   out.detached_dofs = state.detached_dofs;
   out.floating_parts = state.floating_parts;
@@ -64,8 +42,8 @@ evolution::RunState WholeState::whole(const evolution::RunState& state,
                              static_cast<double>(setup::global_cell(*piece_, id.f)),
                              static_cast<double>(id.g), static_cast<double>(id.h)});
   }
-  const std::vector<double> all = la::all_gather(mine);
-  out.failed_in_order.assign(state.failed_over_model, {-1, -1, -1, -1});
+  const std::vector<double> all = la::gather_onto(mine, onto_);
+  if (receives) out.failed_in_order.assign(state.failed_over_model, {-1, -1, -1, -1});
   for (std::size_t k = 0; k + kPacked <= all.size(); k += kPacked) {
     const auto place = static_cast<std::size_t>(all[k]);
     PERIMORPH_ASSERT(place < out.failed_in_order.size(), "a failed bond's place beyond the model's count");
@@ -81,16 +59,14 @@ evolution::RunState WholeState::whole(const evolution::RunState& state,
   for (const auto& [c, d] : state.cell_dissipated)
     if (piece_->piece->of_part(c))
       dissipated.insert(dissipated.end(), {static_cast<double>(setup::global_cell(*piece_, c)), d});
-  const std::vector<double> every = la::all_gather(dissipated);
+  const std::vector<double> every = la::gather_onto(dissipated, onto_);
   for (std::size_t k = 0; k + 1 < every.size(); k += 2)
     out.cell_dissipated[static_cast<Index>(every[k])] = every[k + 1];
 
-  // The held dofs, names to whole dofs, each from the process owning its node.
-  std::vector<Index> held(state.held_dofs.size(), -1);
-  for (std::size_t k = 0; k < held.size(); ++k)
-    if (const Index d = setup::dof_of_name(*piece_, state.held_dofs[k]); d >= 0 && owns_dof(d))
-      held[k] = numbering_.whole_dofs_of({&d, 1})[0];
-  out.held_dofs = from_owners(held);
+  // The held dofs: names (alike on every process) to whole dofs.
+  out.held_dofs.clear();
+  if (receives)
+    for (Index name : state.held_dofs) out.held_dofs.push_back(numbering_.whole_of_name(name));
 
   // The damage history: each cell's points from the process that decides the cell.
   if (!state.history.empty()) {
@@ -104,8 +80,8 @@ evolution::RunState WholeState::whole(const evolution::RunState& state,
       damaged.push_back(static_cast<double>(setup::global_cell(*piece_, c)));
       damaged.insert(damaged.end(), first, first + static_cast<std::ptrdiff_t>(n));
     }
-    const std::vector<double> gathered = la::all_gather(damaged);
-    out.history.assign(static_cast<std::size_t>(cells_) * n, 0.0);
+    const std::vector<double> gathered = la::gather_onto(damaged, onto_);
+    out.history.assign(static_cast<std::size_t>(out.num_cells) * n, 0.0);
     for (std::size_t k = 0; k + n < gathered.size(); k += n + 1)
       std::copy_n(
           gathered.begin() + static_cast<std::ptrdiff_t>(k + 1), n,
@@ -128,6 +104,8 @@ evolution::RunState WholeState::empty_whole() const {
 }
 
 evolution::RunState WholeState::piece_of(const evolution::RunState& whole) const {
+  PERIMORPH_ASSERT(onto_ == la::Onto::every_process,
+                   "WholeState::piece_of on a state gathered onto process 0");
   evolution::RunState out(*piece_);
   out.increment = whole.increment;
   out.load_factor = whole.load_factor;
@@ -150,11 +128,8 @@ evolution::RunState WholeState::piece_of(const evolution::RunState& whole) const
   for (const auto& [c, d] : whole.cell_dissipated)
     if (const Index lc = setup::local_cell(*piece_, c); lc >= 0 && piece_->piece->of_part(lc))
       out.cell_dissipated[lc] = d;
-  std::vector<Index> names(whole.held_dofs.size(), -1);
-  for (std::size_t k = 0; k < names.size(); ++k)
-    if (const Index d = numbering_.piece_dofs_of({&whole.held_dofs[k], 1})[0]; d >= 0 && owns_dof(d))
-      names[k] = setup::dof_name(*piece_, d);
-  out.held_dofs = from_owners(names);
+  out.held_dofs.clear();
+  for (Index w : whole.held_dofs) out.held_dofs.push_back(numbering_.name_of_whole(w));
   // The damage history of every cell of the piece (a cell of its halo shares
   // nodes with, or bonds to, its part's).
   if (const std::size_t n = points_per_cell(); n > 0)

@@ -13,11 +13,13 @@
 // damage history is every cell's of its piece, each cell's updated alike on
 // every process that holds it (evolution::LocalDamage).
 // Every function is collective over PETSC_COMM_WORLD and O(whole model) on
-// every process where it gathers a whole list: the cost of the checkpoint's
-// own whole vectors, paid once a checkpoint.
+// each process that receives the whole lists: every process for a rebuild
+// (each cuts its next piece from them), process 0 alone for a checkpoint,
+// which it writes (la::Onto::process_zero; the others send their share).
 
 #include "perimorph/core/types.hpp"
 #include "perimorph/evolution/run_state.hpp"
+#include "perimorph/la/neighbour_exchange.hpp"
 #include "perimorph/system/whole_numbering.hpp"
 
 #include <span>
@@ -32,8 +34,9 @@ namespace perimorph::run {
 
 class WholeState {
  public:
-  /// For a piece of the model (Discretization::piece set).
-  explicit WholeState(const setup::Discretization& piece);
+  /// For a piece of the model (Discretization::piece set); whole() gathers
+  /// onto `onto`, piece_of needs la::Onto::every_process.
+  explicit WholeState(const setup::Discretization& piece, la::Onto onto = la::Onto::every_process);
 
   const system::WholeNumbering& numbering() const { return numbering_; }
   /// The whole mesh's cell count.
@@ -43,7 +46,9 @@ class WholeState {
   /// (its values at the owned dofs, la::OwnedDofs order), the failed bonds in
   /// the whole order of failure, D of every cell, the held dofs as whole
   /// dofs, the damage history of every cell. The BrokenBonds set is left
-  /// empty (a checkpoint writes the ordered list).
+  /// empty (a checkpoint writes the ordered list). On a process that does
+  /// not receive (la::receives), u, the failed bonds, D, the held dofs and
+  /// the history are empty and the cell count is 0.
   evolution::RunState whole(const evolution::RunState& state, std::span<const double> owned_u) const;
   /// An initial state of the whole model, for evolution::restore_state to
   /// read a checkpoint's into (u, D per cell, the failed-bond set and the
@@ -57,9 +62,9 @@ class WholeState {
 
  private:
   std::size_t points_per_cell() const;  ///< of the damage history (0 without damage)
-  bool owns_dof(Index dof) const;
 
   const setup::Discretization* piece_;
+  la::Onto onto_;
   system::WholeNumbering numbering_;
   Index cells_ = 0;
 };

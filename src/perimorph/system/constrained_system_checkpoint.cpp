@@ -4,7 +4,7 @@
 // the model, WholeNumbering's on a piece; collective).
 
 #include "perimorph/core/binary_stream.hpp"
-#include "perimorph/la/petsc_session.hpp"
+#include "perimorph/la/neighbour_exchange.hpp"
 #include "perimorph/setup/piece_model.hpp"
 #include "perimorph/system/constrained_system.hpp"
 #include "perimorph/system/stiffness.hpp"
@@ -64,13 +64,17 @@ const WholeNumbering* whole_numbering(const setup::Discretization& model, const 
 }
 
 /// The dofs last downdated on every process, in the whole numbering: on a
-/// piece each process's (those of the bonds its piece holds) gathered.
-std::vector<Index> whole_dofs(const std::vector<Index>& dofs, const WholeNumbering* whole) {
+/// piece each process's (those of the bonds its piece holds) gathered by
+/// name onto the processes the numbering's Onto names.
+std::vector<Index> whole_dofs(const setup::Discretization& model, const std::vector<Index>& dofs,
+                              const WholeNumbering* whole) {
   if (!whole) return dofs;
-  const std::vector<Index> mine = whole->whole_dofs_of(dofs);
-  const std::vector<double> all = la::all_gather(std::vector<double>(mine.begin(), mine.end()));
+  std::vector<double> names;
+  for (Index d : dofs) names.push_back(static_cast<double>(setup::dof_name(model, d)));  // exact below 2^53
+  const std::vector<double> all = la::gather_onto(names, whole->onto());
   std::vector<Index> out(all.size());
-  std::transform(all.begin(), all.end(), out.begin(), [](double v) { return static_cast<Index>(v); });
+  std::transform(all.begin(), all.end(), out.begin(),
+                 [&](double name) { return whole->whole_of_name(static_cast<Index>(name)); });
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
@@ -92,7 +96,7 @@ void ConstrainedSystem::save(core::BinaryWriter& out, const WholeNumbering* give
   out.put_vector(whole ? whole->whole(rhs_unit_.at_owned(owned_)) : rhs_unit_.to_replicated());
   out.put_vector(whole ? whole->whole(initial_diagonal_) : owned_.whole(initial_diagonal_));
   out.put<std::uint64_t>(downdates_);
-  out.put_vector(whole_dofs(last_downdated_, whole));
+  out.put_vector(whole_dofs(model_, last_downdated_, whole));
 }
 
 std::unique_ptr<ConstrainedSystem> ConstrainedSystem::restored(const setup::Discretization& model,

@@ -1,6 +1,7 @@
 #include "perimorph/system/whole_numbering.hpp"
 
 #include "perimorph/core/error.hpp"
+#include "perimorph/la/neighbour_exchange.hpp"
 #include "perimorph/la/petsc_session.hpp"
 
 #include <fmt/format.h>
@@ -9,35 +10,55 @@
 
 namespace perimorph::system {
 
-WholeNumbering::WholeNumbering(const partition::PieceDofs& dofs, int block_size)
-    : block_size_(block_size), owned_(dofs.owned) {
+WholeNumbering::WholeNumbering(const partition::PieceDofs& dofs, int block_size, la::Onto onto)
+    : block_size_(block_size), onto_(onto), owned_(dofs.owned) {
   std::vector<double> mine;
   for (std::size_t n = 0; n < dofs.key.size(); ++n)
     if (dofs.owned[n]) mine.push_back(static_cast<double>(dofs.key[n]));  // exact below 2^53
-  const std::vector<double> keys = la::all_gather(mine);                  // in distributed order
-  std::vector<Index> sorted(keys.size());
-  std::transform(keys.begin(), keys.end(), sorted.begin(), [](double k) { return static_cast<Index>(k); });
-  std::sort(sorted.begin(), sorted.end());
-  PERIMORPH_ASSERT(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end(),
+  const std::vector<double> keys = la::gather_onto(mine, onto);           // in distributed order
+  sorted_keys_.resize(keys.size());
+  std::transform(keys.begin(), keys.end(), sorted_keys_.begin(),
+                 [](double k) { return static_cast<Index>(k); });
+  std::sort(sorted_keys_.begin(), sorted_keys_.end());
+  PERIMORPH_ASSERT(std::adjacent_find(sorted_keys_.begin(), sorted_keys_.end()) == sorted_keys_.end(),
                    "a dof node owned twice");
-  auto rank_of = [&](Index key) {
-    const auto it = std::lower_bound(sorted.begin(), sorted.end(), key);
-    PERIMORPH_ASSERT(it != sorted.end() && *it == key, "a dof node no process owns");
-    return static_cast<Index>(it - sorted.begin());
-  };
   of_distributed_.resize(keys.size());
   for (std::size_t d = 0; d < keys.size(); ++d) of_distributed_[d] = rank_of(static_cast<Index>(keys[d]));
+  if (onto != la::Onto::every_process) return;
   of_local_.resize(dofs.key.size());
-  local_of_whole_.assign(sorted.size(), -1);
+  local_of_whole_.assign(sorted_keys_.size(), -1);
   for (std::size_t n = 0; n < dofs.key.size(); ++n) {
     of_local_[n] = rank_of(dofs.key[n]);
     local_of_whole_[static_cast<std::size_t>(of_local_[n])] = static_cast<Index>(n);
   }
 }
 
+Index WholeNumbering::rank_of(Index key) const {
+  const auto it = std::lower_bound(sorted_keys_.begin(), sorted_keys_.end(), key);
+  PERIMORPH_ASSERT(it != sorted_keys_.end() && *it == key, "a dof node no process owns");
+  return static_cast<Index>(it - sorted_keys_.begin());
+}
+
+Index WholeNumbering::whole_of_name(Index name) const {
+  return rank_of(name / block_size_) * block_size_ + name % block_size_;
+}
+
+Index WholeNumbering::name_of_whole(Index whole_dof) const {
+  PERIMORPH_ASSERT(whole_dof >= 0 && whole_dof < whole_dofs(),
+                   "WholeNumbering: a dof beyond the whole model");
+  return sorted_keys_[static_cast<std::size_t>(whole_dof / block_size_)] * block_size_ +
+         whole_dof % block_size_;
+}
+
+void WholeNumbering::check_piece_side() const {
+  PERIMORPH_ASSERT(onto_ == la::Onto::every_process,
+                   "WholeNumbering: the piece's side of a numbering held on process 0 alone");
+}
+
 std::vector<double> WholeNumbering::whole(std::span<const double> owned) const {
   // Every process's owned values, in its range: the distributed order.
-  const std::vector<double> all = la::all_gather(std::vector<double>(owned.begin(), owned.end()));
+  const std::vector<double> all = la::gather_onto(std::vector<double>(owned.begin(), owned.end()), onto_);
+  if (!la::receives(onto_)) return {};
   PERIMORPH_ASSERT(static_cast<Index>(all.size()) == whole_dofs(), "WholeNumbering: not the owned values");
   std::vector<double> out(all.size());
   const auto bs = static_cast<std::size_t>(block_size_);
@@ -48,6 +69,7 @@ std::vector<double> WholeNumbering::whole(std::span<const double> owned) const {
 }
 
 std::vector<double> WholeNumbering::piece_of(std::span<const double> whole) const {
+  check_piece_side();
   PERIMORPH_ASSERT(static_cast<Index>(whole.size()) == whole_dofs(), "WholeNumbering: not a whole vector");
   const auto bs = static_cast<std::size_t>(block_size_);
   std::vector<double> out(of_local_.size() * bs);
@@ -58,6 +80,7 @@ std::vector<double> WholeNumbering::piece_of(std::span<const double> whole) cons
 }
 
 std::vector<double> WholeNumbering::owned_of(std::span<const double> whole) const {
+  check_piece_side();
   PERIMORPH_ASSERT(static_cast<Index>(whole.size()) == whole_dofs(), "WholeNumbering: not a whole vector");
   const auto bs = static_cast<std::size_t>(block_size_);
   std::vector<double> out;
@@ -69,10 +92,11 @@ std::vector<double> WholeNumbering::owned_of(std::span<const double> whole) cons
 }
 
 la::Matrix::Replicated WholeNumbering::whole(const la::Matrix& M) const {
-  return M.replicated(of_distributed_);
+  return M.replicated(of_distributed_, onto_);
 }
 
 la::Matrix::Replicated WholeNumbering::piece_of(const la::Matrix::Replicated& whole) const {
+  check_piece_side();
   const assembly::SparsityPattern& p = whole.pattern;
   PERIMORPH_ASSERT(p.num_block_rows() == static_cast<Index>(local_of_whole_.size()),
                    "WholeNumbering: not a matrix of the whole model");
@@ -103,6 +127,7 @@ la::Matrix::Replicated WholeNumbering::piece_of(const la::Matrix::Replicated& wh
 }
 
 std::vector<Index> WholeNumbering::whole_dofs_of(std::span<const Index> piece_dofs) const {
+  check_piece_side();
   std::vector<Index> out(piece_dofs.size());
   for (std::size_t k = 0; k < piece_dofs.size(); ++k)
     out[k] = of_local_[static_cast<std::size_t>(piece_dofs[k] / block_size_)] * block_size_ +
@@ -111,6 +136,7 @@ std::vector<Index> WholeNumbering::whole_dofs_of(std::span<const Index> piece_do
 }
 
 std::vector<Index> WholeNumbering::piece_dofs_of(std::span<const Index> whole_dofs) const {
+  check_piece_side();
   std::vector<Index> out(whole_dofs.size());
   for (std::size_t k = 0; k < whole_dofs.size(); ++k) {
     const Index n = local_of_whole_[static_cast<std::size_t>(whole_dofs[k] / block_size_)];
