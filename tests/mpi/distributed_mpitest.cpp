@@ -30,9 +30,9 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <Eigen/Cholesky>
-#include <cstdio>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace perimorph {
