@@ -4,13 +4,14 @@
 
 #include "perimorph/core/error.hpp"
 #include "perimorph/io/progress.hpp"
+#include "perimorph/run/next_piece_state.hpp"
 #include "perimorph/run/quasi_static_run.hpp"
-#include "perimorph/run/whole_state.hpp"
 #include "perimorph/setup/boundary_conditions.hpp"
 #include "perimorph/setup/piece_model.hpp"
 #include "perimorph/system/remodel.hpp"
 
 #include <chrono>
+#include <cmath>
 
 namespace perimorph::run {
 
@@ -83,8 +84,9 @@ void QuasiStaticRun::rebuild() {
   owned_ = std::move(next);  // the previous discretization (and its system) are gone now
   u_ = system_->make_vector();
   internal_ = system_->make_vector();
-  u_.assign_replicated(state_.u);
+  u_.assign_replicated(state_.u);  // on a piece, the owned dofs only are carried (move_to_piece)
   choose_gather();
+  if (disc_->piece) state_.u = gather(u_);
   u_prev_ = owned_dofs_.of(u_prev_next);
   fint_prev_.assign(owned_dofs_.size(), 0.0);  // recomputed where it is used next (record, adapt_for_next)
   state_.energy.model_change += strain_energy() - before_energy;
@@ -100,22 +102,29 @@ void QuasiStaticRun::rebuild() {
 }
 
 std::vector<double> QuasiStaticRun::move_to_piece(const setup::Discretization& next) {
-  // The state in the whole model's numbers (as a checkpoint holds it), u
-  // carried on the source parts' whole dof maps, then cut to the next piece,
-  // whose halo may hold more failed bonds and damaged cells than this one's.
-  const WholeState was(*disc_), now(next);
-  evolution::RunState whole_state = was.whole(state_, owned_dofs_.of(state_.u));
-  const setup::Discretization &from = disc_->source->part, &to = next.source->part;
-  whole_state.u = system::transfer_dof_vector(from, to, whole_state.u);
-  whole_state.held_dofs.clear();  // held anew on the next system (PartSupport::rebind)
-  const std::vector<double> u_prev = system::transfer_dof_vector(from, to, was.numbering().whole(u_prev_));
-  evolution::RunState next_state = now.piece_of(whole_state);
-  system::Remodelled r = system::remodel_piece(*system_, *disc_, was.numbering(), next, now.numbering(),
-                                               &next_state.failed, setup::build_dirichlet(next),
-                                               setup::build_external_force(next), next_state.history);
+  // The next piece holds this one's cells and the cells its grown halo
+  // reaches: the state of the new cells comes from their parts' processes
+  // (next_piece_state); u, the last recorded u and the reference diagonal go
+  // across at the next piece's owned dofs, every cell using one being in
+  // both pieces (transfer_dof_vector), and from their owners to its halo.
+  const std::vector<double> u_prev = gather_owned(u_prev_);
+  const std::vector<double> reference = gather_owned(system_->reference_diagonal());
+  evolution::RunState next_state = next_piece_state(*disc_, next, state_);
+  system::Remodelled r =
+      system::remodel_piece(*disc_, reference, next, &next_state.failed, setup::build_dirichlet(next),
+                            setup::build_external_force(next), next_state.history);
+  next_state.u = system::transfer_dof_vector(*disc_, next, state_.u);
+  for (double v : r.system->owned_dofs().of(next_state.u))
+    PERIMORPH_ASSERT(std::isfinite(v), "move_to_piece: an owned dof the last piece did not read");
   state_ = std::move(next_state);
   system_ = std::move(r.system);
-  return now.numbering().piece_of(u_prev);
+  return system::transfer_dof_vector(*disc_, next, u_prev);
+}
+
+std::vector<double> QuasiStaticRun::gather_owned(std::span<const double> owned_values) {
+  la::Vector x = system_->make_vector();
+  x.assign_owned(owned_dofs_, owned_values);
+  return gather(x);
 }
 
 }  // namespace perimorph::run

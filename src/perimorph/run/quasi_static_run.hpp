@@ -142,8 +142,12 @@ class QuasiStaticRun {
   void rebuild();
   /// On a piece: the state carried to `next` (the piece rebuilt for the
   /// state's α) and the system remodelled onto it (system::remodel_piece);
-  /// returns u_prev_ carried to next's numbering (piece-length).
+  /// returns u_prev_ carried to next's numbering (piece-length, at next's
+  /// owned dofs), and leaves the state's u so (rebuild gathers its halo).
   std::vector<double> move_to_piece(const setup::Discretization& next);
+  /// An array at the owned dofs (owned_dofs_ order) at every dof the process
+  /// reads (gather; collective).
+  std::vector<double> gather_owned(std::span<const double> owned_values);
 
   const setup::Discretization* disc_;             ///< the current one: the caller's (non-owning) or owned_
   std::unique_ptr<setup::Discretization> owned_;  ///< rebuilt for a grown α (null before)

@@ -13,9 +13,11 @@
 // damage history is every cell's of its piece, each cell's updated alike on
 // every process that holds it (evolution::LocalDamage).
 // Every function is collective over PETSC_COMM_WORLD and O(whole model) on
-// each process that receives the whole lists: every process for a rebuild
-// (each cuts its next piece from them), process 0 alone for a checkpoint,
-// which it writes (la::Onto::process_zero; the others send their share).
+// each process that receives the whole lists: process 0 alone for a
+// checkpoint, which it writes (la::Onto::process_zero; the others send their
+// share), every process for a restart (each cuts its piece from them). A
+// rebuild for a grown α carries the state by neighbour exchange instead
+// (run/next_piece_state.hpp).
 
 #include "perimorph/core/types.hpp"
 #include "perimorph/evolution/run_state.hpp"

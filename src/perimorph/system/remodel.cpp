@@ -135,8 +135,10 @@ std::vector<double> transfer_dof_vector(const setup::Discretization& before,
     double& slot = out[static_cast<std::size_t>(node * dim + k)];
     slot = combine_max ? std::max(slot, v) : v;
   };
-  for (Index c = 0; c < before.mesh.num_cells(); ++c) {
-    const auto n0 = d0.cell_nodes(c), n1 = d1.cell_nodes(c);
+  for (Index c = 0; c < after.mesh.num_cells(); ++c) {
+    const Index b = setup::local_cell(before, setup::global_cell(after, c));  // c on one mesh
+    if (b < 0) continue;
+    const auto n0 = d0.cell_nodes(b), n1 = d1.cell_nodes(c);
     for (int k = 0; k < dim; ++k) {
       auto old_value = [&](std::size_t a) { return values[static_cast<std::size_t>(n0[a] * dim + k)]; };
       if (n0.size() == n1.size()) {
@@ -241,21 +243,19 @@ Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& befor
   return out;
 }
 
-Remodelled remodel_piece(const ConstrainedSystem& system, const setup::Discretization& before,
-                         const WholeNumbering& was, const setup::Discretization& after,
-                         const WholeNumbering& now, const bonds::BrokenBonds* failed, setup::DirichletData bc,
-                         std::span<const double> F, std::span<const double> damage) {
-  PERIMORPH_ASSERT(before.source && after.source, "remodel_piece: pieces with their source parts");
+Remodelled remodel_piece(const setup::Discretization& before, std::span<const double> reference,
+                         const setup::Discretization& after, const bonds::BrokenBonds* failed,
+                         setup::DirichletData bc, std::span<const double> F, std::span<const double> damage) {
+  PERIMORPH_ASSERT(before.piece && after.piece, "remodel_piece: pieces of the model");
   Remodelled out;
   out.partial = false;
   auto t0 = clock::now();
   la::Matrix K = system::assemble_stiffness_over_processes(after, failed, damage).K;
   out.times.add = since(t0);
   t0 = clock::now();
-  const std::vector<double> reference = transfer_dof_vector(before.source->part, after.source->part,
-                                                            was.whole(system.reference_diagonal()), true);
+  const std::vector<double> carried = transfer_dof_vector(before, after, reference, true);
   out.system = std::make_unique<ConstrainedSystem>(after, std::move(K), std::move(bc), F);
-  carry_owned_reference(*out.system, now.owned_of(reference));
+  carry_reference(*out.system, carried);
   out.times.constrain = since(t0);
   return out;
 }

@@ -10,7 +10,6 @@
 #include "perimorph/setup/boundary_conditions.hpp"
 #include "perimorph/setup/discretization.hpp"
 #include "perimorph/system/constrained_system.hpp"
-#include "perimorph/system/whole_numbering.hpp"
 
 #include <memory>
 #include <span>
@@ -28,14 +27,20 @@ namespace perimorph::system {
 /// change), or its continuity (CG → DG). Sorted.
 std::vector<Index> changed_cells(const setup::Discretization& before, const setup::Discretization& after);
 
-/// A dof vector of `before` carried to `after` (same mesh): every dof node of
+/// A dof vector of `before` carried to `after` (same mesh, or two pieces of
+/// it, setup::cut_to_piece): every dof node of
 /// a cell takes the value of the same corner of that cell before, so a DG
 /// copy of a CG node takes the CG value and a continuous displacement stays
 /// exactly the same field. A DG degree 0 node takes the Q1 value at the
 /// centroid (the mean of the corners); a corner node made from a DG degree 0
 /// cell takes the cell's value. `combine` = max: where several old values
 /// meet in one new node (a node two DG cells share again), their maximum;
-/// otherwise the last cell's value (a continuous field agrees).
+/// otherwise the last cell's value (a continuous field agrees). On pieces the
+/// cells of `after` that `before` lacks carry nothing (their new nodes keep 0,
+/// or −∞ with max): a node's value is the whole model's where `before` holds
+/// every cell using it with its values, as for the nodes `after`'s process owns
+/// when `after`'s piece grew from `before`'s (rebuild_piece_for_alpha: the cells
+/// using an owned node are its part's node neighbours, in both pieces).
 std::vector<double> transfer_dof_vector(const setup::Discretization& before,
                                         const setup::Discretization& after, std::span<const double> values,
                                         bool combine_max = false);
@@ -79,12 +84,13 @@ Remodelled remodel(ConstrainedSystem& system, const setup::Discretization& befor
 /// for a grown α (setup::rebuild_piece_for_alpha), from `system` on the piece
 /// `before`: assembled anew over the processes, as remodel does spread over
 /// processes (so the same bits as a run on parts), `failed` and `damage` in
-/// after's numbers. The reference diagonal carries over as in remodel,
-/// through the two pieces' source parts in the whole model's numbers (`was`
-/// numbers before's dofs, `now` after's). Collective.
-Remodelled remodel_piece(const ConstrainedSystem& system, const setup::Discretization& before,
-                         const WholeNumbering& was, const setup::Discretization& after,
-                         const WholeNumbering& now, const bonds::BrokenBonds* failed, setup::DirichletData bc,
-                         std::span<const double> F, std::span<const double> damage = {});
+/// after's numbers. The reference diagonal carries over as in remodel, from
+/// `reference`, system's at every dof of `before` that its process reads
+/// (its owners' at the halo), through transfer_dof_vector on the pieces.
+/// Collective.
+Remodelled remodel_piece(const setup::Discretization& before, std::span<const double> reference,
+                         const setup::Discretization& after, const bonds::BrokenBonds* failed,
+                         setup::DirichletData bc, std::span<const double> F,
+                         std::span<const double> damage = {});
 
 }  // namespace perimorph::system
