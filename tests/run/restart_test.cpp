@@ -217,6 +217,7 @@ TEST_F(RestartFracture, RefusesATruncatedForeignOrNewerCheckpoint) {
   };
   expect_refused(bytes.substr(0, bytes.size() / 2), "corrupt or truncated checkpoint");
   expect_refused(bytes.substr(0, bytes.size() - 1), "corrupt or truncated checkpoint");
+  expect_refused("", "not a perimorph checkpoint");  // an empty file (nothing to map)
   expect_refused("increment,load_factor\n1,0.5\n", "not a perimorph checkpoint");
   std::string newer = bytes;
   const std::size_t version_at = sizeof(std::uint64_t) + std::string("perimorph-checkpoint").size();

@@ -60,6 +60,35 @@ class BinaryWriter {
   std::string buffer_;
 };
 
+/// n values of T as BinaryWriter stored them, in a reader's bytes (not
+/// copied, maybe unaligned): read one by one, so that a reader of a large
+/// checkpoint takes only what it needs (a mapped file: the pages it touches).
+template <class T>
+class StoredArray {
+  static_assert(std::is_trivially_copyable_v<T>);
+
+ public:
+  StoredArray() = default;
+  StoredArray(const char* data, std::size_t n) : data_(data), n_(n) {}
+  std::size_t size() const { return n_; }
+  bool empty() const { return n_ == 0; }
+  T operator[](std::size_t i) const {
+    T value;
+    std::memcpy(&value, data_ + i * sizeof(T), sizeof(T));
+    return value;
+  }
+  /// Values first … first + count − 1 appended to `out` (in range: the caller checks).
+  void append_to(std::vector<T>& out, std::size_t first, std::size_t count) const {
+    const std::size_t at = out.size();
+    out.resize(at + count);
+    if (count > 0) std::memcpy(out.data() + at, data_ + first * sizeof(T), count * sizeof(T));
+  }
+
+ private:
+  const char* data_ = nullptr;
+  std::size_t n_ = 0;
+};
+
 class BinaryReader {
  public:
   /// Reads `bytes` (not copied: it must outlive the reader); `source` names
@@ -81,6 +110,13 @@ class BinaryReader {
     std::vector<T> values(n);
     if (n > 0) std::memcpy(values.data(), take(n * sizeof(T)), n * sizeof(T));
     return values;
+  }
+  /// A vector as get_vector reads it, left where it is (StoredArray).
+  template <class T>
+  StoredArray<T> get_stored() {
+    const auto n = get<std::uint64_t>();
+    if (n > (bytes_.size() - pos_) / sizeof(T)) fail("a list longer than the file");
+    return StoredArray<T>(take(n * sizeof(T)), n);
   }
   std::string get_string() {
     const auto n = get<std::uint64_t>();

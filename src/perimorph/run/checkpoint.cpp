@@ -6,11 +6,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 
 namespace perimorph::run {
 
@@ -45,12 +41,8 @@ std::string find_checkpoint(const std::string& given, const std::string& basenam
   throw InputError(fmt::format("--restart {}: no such file or directory", given));
 }
 
-std::string read_checkpoint_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(fmt::format("cannot read checkpoint '{}': {}", path, std::strerror(errno)));
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw Error(fmt::format("cannot read checkpoint '{}': {}", path, std::strerror(errno)));
-  return bytes;
+core::MappedFile read_checkpoint_file(const std::string& path) {
+  return core::MappedFile(path, "checkpoint");
 }
 
 void write_header(core::BinaryWriter& out, const casefile::CaseConfig& config) {

@@ -21,6 +21,7 @@
 
 #include "perimorph/casefile/case_config.hpp"
 #include "perimorph/core/binary_stream.hpp"
+#include "perimorph/core/mapped_file.hpp"
 
 #include <cstdint>
 #include <string>
@@ -38,8 +39,9 @@ std::string checkpoint_path(const std::string& directory, const std::string& bas
 /// given/BASENAME.checkpoint. Throws InputError if there is none.
 std::string find_checkpoint(const std::string& given, const std::string& basename);
 
-/// The whole file (throws Error naming it).
-std::string read_checkpoint_file(const std::string& path);
+/// The file, mapped (core::MappedFile: a process touches only what it reads;
+/// throws Error naming it).
+core::MappedFile read_checkpoint_file(const std::string& path);
 
 /// The opening: tag, version, the case's values ([output] checkpoint_every
 /// left out: it may change between the runs).

@@ -83,8 +83,8 @@ void QuasiStaticRun::save_checkpoint() {
 
 void QuasiStaticRun::restore(const std::string& path, const RunOptions& /*options*/) {
   progress_->phase("restart");
-  const std::string bytes = read_checkpoint_file(path);
-  core::BinaryReader in(bytes, path);
+  const core::MappedFile file = read_checkpoint_file(path);
+  core::BinaryReader in(file.bytes(), path);
   const auto& config = disc_->config;
   check_header(in, config);
 

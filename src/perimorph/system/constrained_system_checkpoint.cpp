@@ -4,7 +4,9 @@
 // the model, WholeNumbering's on a piece; collective).
 
 #include "perimorph/core/binary_stream.hpp"
+#include "perimorph/core/error.hpp"
 #include "perimorph/la/neighbour_exchange.hpp"
+#include "perimorph/la/petsc_session.hpp"
 #include "perimorph/setup/piece_model.hpp"
 #include "perimorph/system/constrained_system.hpp"
 #include "perimorph/system/stiffness.hpp"
@@ -31,27 +33,49 @@ void save_matrix(core::BinaryWriter& out, const la::Matrix& M, const WholeNumber
 }
 
 /// Spread over the processes as the model's stiffness is
-/// (system::distribution_over_processes; collective); `rows`: the whole model's dofs.
+/// (system::distribution_over_processes; collective); `rows`: the whole model's
+/// dofs. On a piece only its owned rows are read (WholeNumbering::piece_of).
 la::Matrix load_matrix(core::BinaryReader& in, const setup::Discretization& model, Index rows,
                        const WholeNumbering* whole) {
+  StoredMatrix stored;
+  stored.block_size = in.get<int>();
+  stored.row_offsets = in.get_stored<Index>();
+  stored.columns = in.get_stored<Index>();
+  stored.values = in.get_stored<double>();
+  const auto bs = static_cast<Index>(stored.block_size);
+  const auto block_rows = static_cast<Index>(stored.row_offsets.size()) - 1;
+  if (bs < 1 || stored.row_offsets.empty() || block_rows * bs != rows)
+    in.fail(fmt::format("a matrix of {} rows where the model has {} dofs",
+                        stored.row_offsets.empty() ? 0 : block_rows * bs, rows));
+  if (stored.values.size() != stored.columns.size() * static_cast<std::size_t>(bs * bs))
+    in.fail("matrix values that do not fit its pattern");
+  if (stored.row_offsets[0] != 0 ||
+      static_cast<std::size_t>(stored.row_offsets[stored.row_offsets.size() - 1]) != stored.columns.size())
+    in.fail("a matrix pattern that does not add up");
+  if (whole) {
+    // Each process checks the rows it reads: every process stops if one finds a bad one.
+    la::Matrix::Replicated mine;
+    std::string bad;
+    try {
+      mine = whole->piece_of(stored);
+    } catch (const InputError& e) {
+      bad = e.what();
+    }
+    if (la::any_over_processes(!bad.empty()))
+      in.fail(bad.empty() ? "a matrix row another process read is bad" : bad);
+    return la::Matrix::from_replicated(mine, distribution_over_processes(model));
+  }
   la::Matrix::Replicated r;
   assembly::SparsityPattern& p = r.pattern;
-  p.block_size = in.get<int>();
-  p.row_offsets = in.get_vector<Index>();
-  p.columns = in.get_vector<Index>();
-  if (p.block_size < 1 || p.row_offsets.empty() || p.num_block_rows() * p.block_size != rows)
-    in.fail(fmt::format("a matrix of {} rows where the model has {} dofs",
-                        p.row_offsets.empty() ? 0 : p.num_block_rows() * p.block_size, rows));
-  if (p.row_offsets.front() != 0 || static_cast<std::size_t>(p.row_offsets.back()) != p.columns.size())
-    in.fail("a matrix pattern that does not add up");
+  p.block_size = stored.block_size;
+  stored.row_offsets.append_to(p.row_offsets, 0, stored.row_offsets.size());
+  stored.columns.append_to(p.columns, 0, stored.columns.size());
   for (std::size_t k = 0; k + 1 < p.row_offsets.size(); ++k)
     if (p.row_offsets[k] > p.row_offsets[k + 1]) in.fail("a matrix pattern that does not add up");
   for (Index c : p.columns)
     if (c < 0 || c >= p.num_block_rows()) in.fail("a matrix column out of range");
-  r.values = in.get_vector<double>();
-  if (r.values.size() != p.columns.size() * static_cast<std::size_t>(p.block_size * p.block_size))
-    in.fail("matrix values that do not fit its pattern");
-  return la::Matrix::from_replicated(whole ? whole->piece_of(r) : r, distribution_over_processes(model));
+  stored.values.append_to(r.values, 0, stored.values.size());
+  return la::Matrix::from_replicated(r, distribution_over_processes(model));
 }
 
 /// On a piece of the model, its whole numbering: `given`, else one built in

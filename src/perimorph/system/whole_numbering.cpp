@@ -95,31 +95,37 @@ la::Matrix::Replicated WholeNumbering::whole(const la::Matrix& M) const {
   return M.replicated(of_distributed_, onto_);
 }
 
-la::Matrix::Replicated WholeNumbering::piece_of(const la::Matrix::Replicated& whole) const {
+la::Matrix::Replicated WholeNumbering::piece_of(const StoredMatrix& whole) const {
   check_piece_side();
-  const assembly::SparsityPattern& p = whole.pattern;
-  PERIMORPH_ASSERT(p.num_block_rows() == static_cast<Index>(local_of_whole_.size()),
+  PERIMORPH_ASSERT(whole.row_offsets.size() == local_of_whole_.size() + 1,
                    "WholeNumbering: not a matrix of the whole model");
-  const auto bb = static_cast<std::size_t>(p.block_size) * static_cast<std::size_t>(p.block_size);
+  const std::size_t bb =
+      static_cast<std::size_t>(whole.block_size) * static_cast<std::size_t>(whole.block_size);
+  PERIMORPH_ASSERT(whole.values.size() == whole.columns.size() * bb,
+                   "WholeNumbering: values off the pattern");
   la::Matrix::Replicated out;
-  out.pattern.block_size = p.block_size;
+  out.pattern.block_size = whole.block_size;
   out.pattern.row_offsets.assign(1, 0);
   for (std::size_t n = 0; n < of_local_.size(); ++n) {
     if (owned_[n]) {
-      const Index w = of_local_[n];
-      const auto row = p.row(w);
-      const auto first = static_cast<std::size_t>(p.row_offsets[static_cast<std::size_t>(w)]);
-      for (Index c : row) {
+      const auto w = static_cast<std::size_t>(of_local_[n]);
+      const Index first = whole.row_offsets[w], last = whole.row_offsets[w + 1];
+      if (first < 0 || last < first || static_cast<std::size_t>(last) > whole.columns.size())
+        throw InputError(fmt::format("the matrix row of dof node {} does not add up", w));
+      for (auto k = static_cast<std::size_t>(first); k < static_cast<std::size_t>(last); ++k) {
+        const Index c = whole.columns[k];
+        if (c < 0 || static_cast<std::size_t>(c) >= local_of_whole_.size())
+          throw InputError(fmt::format("the matrix row of dof node {} has a column out of range", w));
         const Index local = local_of_whole_[static_cast<std::size_t>(c)];
         if (local < 0)
-          throw Error(
-              fmt::format("a checkpoint's matrix couples dof node {} to node {}, which this process's "
-                          "piece of the model does not hold",
+          throw InputError(
+              fmt::format("the matrix couples dof node {} to node {}, which this process's piece of the "
+                          "model does not hold",
                           w, c));
         out.pattern.columns.push_back(local);  // ascending: local order is the whole order
       }
-      out.values.insert(out.values.end(), whole.values.begin() + static_cast<std::ptrdiff_t>(first * bb),
-                        whole.values.begin() + static_cast<std::ptrdiff_t>((first + row.size()) * bb));
+      whole.values.append_to(out.values, static_cast<std::size_t>(first) * bb,
+                             static_cast<std::size_t>(last - first) * bb);
     }
     out.pattern.row_offsets.push_back(static_cast<Index>(out.pattern.columns.size()));
   }

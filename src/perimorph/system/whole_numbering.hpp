@@ -7,9 +7,10 @@
 // so a node's whole number is the rank of its key among every process's keys:
 // each process sends the keys of the nodes it owns, in its distributed range's
 // order, and the processes that are to hold whole vectors sort them: every
-// process (a rebuild, a restart: O(whole model) on each), or process 0 alone
+// process (a restart: O(whole model nodes) on each), or process 0 alone
 // (la::Onto::process_zero: what a checkpoint writes, whole on process 0 only).
 
+#include "perimorph/core/binary_stream.hpp"
 #include "perimorph/core/types.hpp"
 #include "perimorph/la/matrix.hpp"
 #include "perimorph/partition/piece_dofs.hpp"
@@ -18,6 +19,14 @@
 #include <vector>
 
 namespace perimorph::system {
+
+/// A matrix in the whole numbering as a checkpoint stores it (block CSR:
+/// la::Matrix::Replicated's arrays), left in the checkpoint's bytes.
+struct StoredMatrix {
+  int block_size = 1;
+  core::StoredArray<Index> row_offsets, columns;
+  core::StoredArray<double> values;
+};
 
 class WholeNumbering {
  public:
@@ -53,10 +62,13 @@ class WholeNumbering {
   /// names; an empty pattern on the others (collective).
   la::Matrix::Replicated whole(const la::Matrix& M) const;
   /// The rows of the piece's owned dof nodes of a matrix in the whole
-  /// numbering, in the piece's numbering (the other rows empty), for
-  /// la::Matrix::from_replicated on the piece's distribution. Throws Error
-  /// (naming the whole row) where such a row reaches a node the piece lacks.
-  la::Matrix::Replicated piece_of(const la::Matrix::Replicated& whole) const;
+  /// numbering as a checkpoint stores it, in the piece's numbering (the other
+  /// rows empty), for la::Matrix::from_replicated on the piece's
+  /// distribution. Only those rows are read: a mapped checkpoint's other
+  /// pages are never touched. Throws InputError where such a row does not
+  /// add up, or reaches a node out of range or one the piece lacks (naming
+  /// the whole row).
+  la::Matrix::Replicated piece_of(const StoredMatrix& whole) const;
 
   /// The whole numbers of piece dofs, and back (−1 where the piece lacks it).
   std::vector<Index> whole_dofs_of(std::span<const Index> piece_dofs) const;
