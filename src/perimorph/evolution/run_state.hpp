@@ -65,6 +65,11 @@ struct RunState {
   /// The position in failed_in_order of the first bond that failed after the
   /// whole model's first `count` ones (`count` itself but on a piece).
   std::size_t failed_after(std::size_t count) const;
+  /// Takes `from`'s increment, load factor, α, cumulative counts (detached
+  /// dofs, floating parts, cell mechanisms) and energy ledger: what every
+  /// process holds alike, whatever the numbering of the model it is on (a
+  /// state moved to another piece or to the whole model's numbers).
+  void take_progress(const RunState& from);
   /// D per cell, half of each failed bond to each end: the cells with a
   /// failed bond only (0 elsewhere), so that it costs the crack, not the model.
   std::unordered_map<Index, double> cell_dissipated;

@@ -66,14 +66,8 @@ evolution::RunState next_piece_state(const setup::Discretization& before, const 
   PERIMORPH_ASSERT(was.part == now.part && now.part == la::world_rank(),
                    "next_piece_state: the pieces of this process's part");
   evolution::RunState out(after);
-  out.increment = state.increment;
-  out.load_factor = state.load_factor;
-  out.alpha = state.alpha;
+  out.take_progress(state);
   out.failed_over_model = state.failed_over_model;
-  out.detached_dofs = state.detached_dofs;
-  out.floating_parts = state.floating_parts;
-  out.cell_mechanisms = state.cell_mechanisms;
-  out.energy = state.energy;
   auto now_of = [&](Index c) {  // before's local cell c in after's numbers
     const Index local = now.local_cell(setup::global_cell(before, c));
     PERIMORPH_ASSERT(local >= 0, "next_piece_state: the next piece lacks a cell of this one");

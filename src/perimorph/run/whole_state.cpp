@@ -18,17 +18,11 @@ WholeState::WholeState(const setup::Discretization& piece, la::Onto onto)
 evolution::RunState WholeState::whole(const evolution::RunState& state,
                                       std::span<const double> owned_u) const {
   evolution::RunState out(*piece_);
-  out.increment = state.increment;
-  out.load_factor = state.load_factor;
-  out.alpha = state.alpha;
+  out.take_progress(state);
   const bool receives = la::receives(onto_);
   out.u = numbering_.whole(owned_u);
   out.num_cells = receives ? cells_ : 0;
   out.failed = {};
-  out.detached_dofs = state.detached_dofs;
-  out.floating_parts = state.floating_parts;
-  out.cell_mechanisms = state.cell_mechanisms;
-  out.energy = state.energy;
 
   // The failed bonds: every process's with their places, in the whole order.
   constexpr std::size_t kPacked = 5;
@@ -107,14 +101,8 @@ evolution::RunState WholeState::piece_of(const evolution::RunState& whole) const
   PERIMORPH_ASSERT(onto_ == la::Onto::every_process,
                    "WholeState::piece_of on a state gathered onto process 0");
   evolution::RunState out(*piece_);
-  out.increment = whole.increment;
-  out.load_factor = whole.load_factor;
-  out.alpha = whole.alpha;
+  out.take_progress(whole);
   out.u = numbering_.piece_of(whole.u);
-  out.detached_dofs = whole.detached_dofs;
-  out.floating_parts = whole.floating_parts;
-  out.cell_mechanisms = whole.cell_mechanisms;
-  out.energy = whole.energy;
   for (std::size_t k = 0; k < whole.failed_in_order.size(); ++k) {
     const auto& id = whole.failed_in_order[k];
     const Index e = setup::local_cell(*piece_, id.e), f = setup::local_cell(*piece_, id.f);
