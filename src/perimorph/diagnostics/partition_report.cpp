@@ -3,7 +3,9 @@
 #include "perimorph/bonds/cell_graph.hpp"
 #include "perimorph/la/graph_partition.hpp"
 #include "perimorph/partition/dof_layout.hpp"
+#include "perimorph/partition/grid_bisection.hpp"
 #include "perimorph/partition/partition.hpp"
+#include "perimorph/setup/mesh_window.hpp"
 
 #include <fmt/format.h>
 
@@ -109,6 +111,20 @@ std::string partition_report(const setup::Discretization& disc, int parts) {
         per(static_cast<std::size_t>(max_received), static_cast<std::size_t>(disc.dofmap.num_nodes())),
         max_received_whole,
         per(static_cast<std::size_t>(max_received_whole), static_cast<std::size_t>(disc.dofmap.num_nodes())));
+  if (parts > 1 && setup::has_windows(disc.config)) {
+    // What a distributed run builds its parts on (setup::part_window).
+    const auto t0 = std::chrono::steady_clock::now();
+    const partition::GridBisection grid = setup::grid_bisection(disc.config, parts);
+    std::size_t largest = 0;
+    for (int q = 0; q < parts; ++q)
+      largest = std::max(largest, setup::part_window(disc.config, grid, q).owner.size());
+    const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    out += fmt::format(
+        "           set-up on windows of the box: the largest part's window holds {} of the {} cells "
+        "({:.3f}), "
+        "the length of its set-up's mesh, dof map, alpha bounds and flags ({:.2f} s to find every part's)\n",
+        largest, disc.mesh.num_cells(), per(largest, static_cast<std::size_t>(disc.mesh.num_cells())), t);
+  }
   return out;
 }
 

@@ -17,12 +17,7 @@ Mesh make_box(const BoxSpec& spec) {
     nn[static_cast<std::size_t>(d)] = n[static_cast<std::size_t>(d)] + 1;
   }
   auto node_id = [&](Index i, Index j, Index k) { return i + nn[0] * (j + nn[1] * k); };
-  StructuredLayout layout;
-  layout.cells = n;
-  layout.origin = spec.lower;
-  layout.upper = spec.upper;
-  for (int d = 0; d < dim; ++d)
-    layout.spacing[d] = (spec.upper[d] - spec.lower[d]) / static_cast<double>(n[static_cast<std::size_t>(d)]);
+  const StructuredLayout layout = box_layout(spec);
 
   std::vector<Vec3> nodes;
   nodes.reserve(static_cast<std::size_t>(nn[0] * nn[1] * nn[2]));
@@ -76,6 +71,18 @@ Mesh make_box(const BoxSpec& spec) {
   mesh.cell_sets["all"] = std::move(all);
   mesh.structure = layout;
   return mesh;
+}
+
+StructuredLayout box_layout(const BoxSpec& spec) {
+  StructuredLayout layout;
+  for (int d = 0; d < spec.dim; ++d)
+    layout.cells[static_cast<std::size_t>(d)] = spec.cells[static_cast<std::size_t>(d)];
+  layout.origin = spec.lower;
+  layout.upper = spec.upper;
+  for (int d = 0; d < spec.dim; ++d)
+    layout.spacing[d] =
+        (spec.upper[d] - spec.lower[d]) / static_cast<double>(layout.cells[static_cast<std::size_t>(d)]);
+  return layout;
 }
 
 Vec3 box_node(const StructuredLayout& layout, int dim, const std::array<Index, 3>& ijk) {

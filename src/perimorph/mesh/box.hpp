@@ -20,6 +20,10 @@ struct BoxSpec {
 /// "boundary", cell set "all".
 Mesh make_box(const BoxSpec& spec);
 
+/// The layout of make_box(spec) (its box_cells empty): cells per axis (1
+/// beyond spec.dim), corners and spacing.
+StructuredLayout box_layout(const BoxSpec& spec);
+
 /// Node (i, j, k) of the box of `layout` in `dim` dimensions, as make_box
 /// places it (the same expression: the same bits).
 Vec3 box_node(const StructuredLayout& layout, int dim, const std::array<Index, 3>& ijk);

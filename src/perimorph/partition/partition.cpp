@@ -55,8 +55,14 @@ std::vector<char> cells_of_part(const mesh::Mesh& mesh, int parts, int part) {
 }
 
 std::vector<char> cells_near_part(const mesh::Mesh& mesh, int parts, int part) {
-  std::vector<char> near = cells_of_part(mesh, parts, part);
-  if (near.empty()) return near;
+  if (parts == 1) return {};
+  return cells_near_part(mesh, coordinate_bisection(mesh, parts).owner, part);
+}
+
+std::vector<char> cells_near_part(const mesh::Mesh& mesh, std::span<const int> owner, int part) {
+  PERIMORPH_ASSERT(static_cast<Index>(owner.size()) == mesh.num_cells(), "a part for every cell");
+  std::vector<char> near(owner.size(), 0);
+  for (std::size_t c = 0; c < owner.size(); ++c) near[c] = owner[c] == part ? 1 : 0;
   std::vector<char> node_of_part(static_cast<std::size_t>(mesh.num_nodes()), 0);
   for (Index c = 0; c < mesh.num_cells(); ++c)
     if (near[static_cast<std::size_t>(c)])

@@ -8,6 +8,7 @@
 
 #include "perimorph/core/types.hpp"
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,10 @@ std::vector<char> cells_of_part(const mesh::Mesh& mesh, int parts, int part);
 /// (cells_touching) and of its cells_of_part. What a process of a distributed
 /// run computes the morphed C of (setup::Discretization::computed_cells).
 std::vector<char> cells_near_part(const mesh::Mesh& mesh, int parts, int part);
+
+/// The same for the parts `owner` (one per cell of `mesh`) gives: on a window
+/// of a mesh (setup::MeshWindow), those of the window's cells.
+std::vector<char> cells_near_part(const mesh::Mesh& mesh, std::span<const int> owner, int part);
 
 /// The cells each cell is coupled to: those sharing a node with it (CG dofs,
 /// local assembly) and its neighbours in `graph` (bonds), the cell itself

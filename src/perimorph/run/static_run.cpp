@@ -7,6 +7,7 @@
 #include "perimorph/la/petsc_session.hpp"
 #include "perimorph/partition/partition.hpp"
 #include "perimorph/run/quasi_static_run.hpp"
+#include "perimorph/run/window_part.hpp"
 #include "perimorph/setup/critical_stretch.hpp"
 #include "perimorph/setup/piece_model.hpp"
 
@@ -30,13 +31,25 @@ setup::Discretization process_part(const casefile::CaseConfig& config, const set
                                       }});
 }
 
+namespace {
+
+/// This process's part built on the whole mesh (process_part), and the part of every cell.
+std::pair<setup::Discretization, std::vector<int>> whole_mesh_part(const casefile::CaseConfig& config,
+                                                                   const setup::PhaseCallback& on_phase) {
+  setup::Discretization part = process_part(config, on_phase);
+  std::vector<int> owner = partition::coordinate_bisection(part.mesh, la::world_size()).owner;
+  return {std::move(part), std::move(owner)};
+}
+
+}  // namespace
+
 setup::Discretization process_model(const casefile::CaseConfig& config,
                                     const setup::PhaseCallback& on_phase) {
   const int processes = la::world_size(), rank = la::world_rank();
-  setup::Discretization part = process_part(config, on_phase);
-  if (processes == 1) return part;
+  if (processes == 1) return process_part(config, on_phase);
+  auto [part, owner] =
+      setup::has_windows(config) ? window_part(config, on_phase) : whole_mesh_part(config, on_phase);
   if (on_phase) on_phase("piece");
-  std::vector<int> owner = partition::coordinate_bisection(part.mesh, processes).owner;
   setup::Discretization piece = setup::cut_to_piece(part, owner, rank, la::any_over_processes);
   // A rebuild for a grown α starts from the part (setup::rebuild_piece_for_alpha).
   if (config.adaptivity.enabled) piece.source = setup::keep_source(std::move(part), std::move(owner));

@@ -92,14 +92,18 @@ struct RunSummary {
 setup::Discretization process_part(const casefile::CaseConfig& config,
                                    const setup::PhaseCallback& on_phase = {});
 
-/// The model this process runs: on several processes, its process_part cut
-/// to its piece (setup::cut_to_piece), where nothing as long as the whole model
+/// The model this process runs: on several processes, its part cut to its
+/// piece (setup::cut_to_piece), where nothing as long as the whole model
 /// is kept after the set-up: its failed bonds, damage changes and what they
 /// cut loose are shared in whole-mesh cell numbers and dof names, and a
 /// checkpoint is written in the whole model's numbers (run::WholeState). With
 /// [adaptivity], the part is kept as the piece's source, from which a rebuild
 /// for a grown α cuts the next piece (setup::rebuild_piece_for_alpha); without,
-/// it is dropped. On one process the whole model. Collective.
+/// it is dropped. The part is built on the process's window of the case's box
+/// (setup::part_window, partition::GridBisection: no array as long as the
+/// whole mesh) where the case allows it (setup::has_windows: a box without
+/// holes or cuts), else on the whole mesh (process_part). On one process the
+/// whole model. Collective.
 setup::Discretization process_model(const casefile::CaseConfig& config,
                                     const setup::PhaseCallback& on_phase = {});
 

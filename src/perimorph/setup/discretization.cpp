@@ -29,8 +29,9 @@ std::string point(const Vec3& v, int n) {
   return fmt::format("[{}]", fmt::join(v.data(), v.data() + n, ", "));
 }
 
-/// Fills m.node_sets[s.name] with the nodes in the box of s, widened by tol.
-void add_node_set(mesh::Mesh& m, const casefile::NodeSetSpec& s, double tol) {
+/// Fills m.node_sets[s.name] with the nodes in the box of s, widened by tol;
+/// an error if it selects none on the whole mesh (`whole`: m may be a window).
+void add_node_set(mesh::Mesh& m, const casefile::NodeSetSpec& s, double tol, const WholeMeshChecks& whole) {
   const int dim = m.dim();
   const auto names = m.set_names();
   if (std::find(names.begin(), names.end(), s.name) != names.end())
@@ -41,12 +42,12 @@ void add_node_set(mesh::Mesh& m, const casefile::NodeSetSpec& s, double tol) {
   std::vector<Index> nodes;
   for (Index n = 0; n < m.num_nodes(); ++n)
     if (inside(m.node(n), lo, hi, dim)) nodes.push_back(n);
-  if (nodes.empty())
+  if (!whole.any(!nodes.empty()))
     throw InputError(
         fmt::format("{}: node set '{}' (box {} to {}) selects no mesh node; enlarge its box to reach "
                     "a node (the mesh spans {} to {})",
                     s.where.describe(), s.name, point(s.lower, dim), point(s.upper, dim),
-                    point(m.bounding_box().first, dim), point(m.bounding_box().second, dim)));
+                    point(whole.bounds_of(m).first, dim), point(whole.bounds_of(m).second, dim)));
   m.node_sets[s.name] = std::move(nodes);
 }
 
@@ -65,8 +66,7 @@ std::string cell_set_names(const mesh::Mesh& m) {
 /// The mesh of [mesh]: a box, or the Gmsh file with its pre-crack groups split.
 mesh::Mesh make_mesh(const casefile::CaseConfig& config) {
   const auto& box = config.mesh.box;
-  if (config.mesh.kind == casefile::MeshKind::box)
-    return mesh::make_box({box.dim, box.lower, box.upper, box.cells});
+  if (config.mesh.kind == casefile::MeshKind::box) return mesh::make_box(box_of(config));
   const auto& g = config.mesh.gmsh;
   mesh::Mesh m = [&] {
     try {
@@ -88,9 +88,8 @@ mesh::Mesh make_mesh(const casefile::CaseConfig& config) {
 
 }  // namespace
 
-mesh::Mesh build_mesh(const casefile::CaseConfig& config) {
+mesh::Mesh shape_mesh(const casefile::CaseConfig& config, mesh::Mesh m, const WholeMeshChecks& whole) {
   const auto& box = config.mesh.box;
-  mesh::Mesh m = make_mesh(config);
   for (const auto& h : config.mesh.holes) {  // before regions and cuts: they see the holed mesh
     try {
       mesh::remove_hole(m, Hole{box.dim, h.shape, h.center, h.radius, h.lower, h.upper});
@@ -111,7 +110,7 @@ mesh::Mesh build_mesh(const casefile::CaseConfig& config) {
         if (inside(m.cell_centroid(c), r.lower, r.upper, box.dim)) cells.push_back(c);
     }
     for (Index c : cells) m.cell_region[static_cast<std::size_t>(c)] = r.id;
-    if (cells.empty())
+    if (!whole.any(!cells.empty()))
       throw InputError(
           fmt::format("{}: region '{}' contains no cell centroid; enlarge its box or refine the mesh",
                       r.where.describe(), r.name));
@@ -126,13 +125,17 @@ mesh::Mesh build_mesh(const casefile::CaseConfig& config) {
   }
   // After the cuts, so that both copies of a split node are selected.
   if (!config.node_sets.empty()) {
-    const auto [lo, hi] = m.bounding_box();
+    const auto [lo, hi] = whole.bounds_of(m);
     double extent = 0.0;
     for (int d = 0; d < box.dim; ++d) extent = std::max(extent, hi[d] - lo[d]);
     const double tol = 1e-9 * extent;
-    for (const auto& s : config.node_sets) add_node_set(m, s, tol);
+    for (const auto& s : config.node_sets) add_node_set(m, s, tol, whole);
   }
   return m;
+}
+
+mesh::Mesh build_mesh(const casefile::CaseConfig& config) {
+  return shape_mesh(config, make_mesh(config), {});
 }
 
 Voigt6 material_stiffness(const casefile::MaterialSpec& m) {
@@ -162,7 +165,8 @@ namespace {
 /// an [[alpha.region]] that reaches no point is an InputError (a case error;
 /// not checked on a rebuild).
 void place_alpha(Discretization& d, alpha::AlphaField alpha, const std::function<void(const char*)>& phase,
-                 bool config_check) {
+                 bool config_check, const WholeMeshChecks& whole = {},
+                 const std::function<double(double)>& max_over_processes = {}) {
   const auto& config = d.config;
   const mesh::Mesh& m = d.mesh;
   const int dim = m.dim();
@@ -177,7 +181,12 @@ void place_alpha(Discretization& d, alpha::AlphaField alpha, const std::function
       part ? bonds::make_nonlocal_points(m, config.nonlocal.quadrature, d.scale, nl.alpha, partial_volume,
                                          std::vector<char>(static_cast<std::size_t>(m.num_cells()), 0))
            : bonds::make_nonlocal_points(m, config.nonlocal.quadrature, d.scale, nl.alpha, partial_volume);
-  if (config_check) check_alpha_regions(config, nl.alpha, nl.points, m, d.rule);
+  // On a window the points' bound is the whole mesh's: the maximum over the
+  // windows (which cover it), or on a rebuild the one found then.
+  if (d.window)
+    nl.points.half_bound =
+        max_over_processes ? max_over_processes(nl.points.half_bound) : d.window->half_bound;
+  if (config_check) check_alpha_regions(config, nl.alpha, nl.points, m, d.rule, whole);
   phase("bond graph");
   const auto& amax = nl.points.cell_alpha_max;
   // Boxes of the local and non-local points: the graph must hold every cell
@@ -277,7 +286,8 @@ Discretization build_discretization(const casefile::CaseConfig& config, const Ph
   };
   check_matrix_free(config);
   phase("mesh");
-  mesh::Mesh m = build_mesh(config);
+  std::shared_ptr<WindowNumbers> window;
+  mesh::Mesh m = part.window ? window_mesh(config, *part.window, window) : build_mesh(config);
   const int dim = m.dim();
   const double scale = dim == 3 ? 1.0 : config.model.thickness;
   auto rule = fem::gauss_legendre(dim, config.model.local_quadrature);
@@ -325,10 +335,11 @@ Discretization build_discretization(const casefile::CaseConfig& config, const Ph
     }
     for (Index c = 0; c < m.num_cells(); ++c)
       if (assigned[static_cast<std::size_t>(c)] < 0)
-        throw InputError(fmt::format(
-            "{}: cell {} (centroid {:.4g}, {:.4g}, {:.4g}) has no material; give a material "
-            "with region = \"all\" or cover every region",
-            config.path, c, m.cell_centroid(c).x(), m.cell_centroid(c).y(), m.cell_centroid(c).z()));
+        throw InputError(
+            fmt::format("{}: cell {} (centroid {:.4g}, {:.4g}, {:.4g}) has no material; give a material "
+                        "with region = \"all\" or cover every region",
+                        config.path, window ? window->global_cell[static_cast<std::size_t>(c)] : c,
+                        m.cell_centroid(c).x(), m.cell_centroid(c).y(), m.cell_centroid(c).z()));
     phase("dof map");
   }
   dofs::DofMap dofmap(m, dim);  // CG; with [nonlocal], place_alpha sets the CG/DG flags
@@ -339,9 +350,19 @@ Discretization build_discretization(const casefile::CaseConfig& config, const Ph
   Discretization d{config,          std::move(m),      std::move(dofmap),
                    std::move(rule), std::move(field),  scale,
                    std::move(nl),   std::move(damage), {}};
-  d.computed_cells = partition::cells_near_part(d.mesh, part.parts, part.part);
+  d.window = window;
+  d.computed_cells = part.window ? partition::cells_near_part(d.mesh, part.window->owner, part.part)
+                                 : partition::cells_near_part(d.mesh, part.parts, part.part);
   d.share_flags = std::move(part.share_flags);
-  if (d.nonlocal) place_alpha(d, make_alpha_field(config), phase, true);
+  if (d.nonlocal) {
+    if (part.window)
+      place_alpha(d, make_alpha_field(config), phase, true,
+                  {part.window->any_over_processes, std::pair{config.mesh.box.lower, config.mesh.box.upper}},
+                  part.window->max_over_processes);
+    else
+      place_alpha(d, make_alpha_field(config), phase, true);
+    if (window) window->half_bound = d.nonlocal->points.half_bound;
+  }
   return d;
 }
 

@@ -11,6 +11,7 @@
 #include "perimorph/fem/material.hpp"
 #include "perimorph/mesh/mesh.hpp"
 #include "perimorph/setup/damage_model.hpp"
+#include "perimorph/setup/mesh_window.hpp"
 #include "perimorph/setup/nonlocal_setup.hpp"
 
 #include <functional>
@@ -64,6 +65,10 @@ struct Discretization {
   /// from, kept for a rebuild for a grown α (rebuild_piece_for_alpha). Null
   /// otherwise.
   std::shared_ptr<const PieceSource> source{};
+  /// On a part built on a window of a box mesh (ModelPart::window): what its
+  /// cells and nodes are in the whole mesh. Null for a mesh that is the whole
+  /// mesh or a piece.
+  std::shared_ptr<const WindowNumbers> window{};
 
   int dim() const { return mesh.dim(); }
   assembly::LocalSpace local_space() const { return {mesh, dofmap, rule, scale}; }
@@ -91,6 +96,11 @@ struct Discretization {
 /// node set that selects no node.
 mesh::Mesh build_mesh(const casefile::CaseConfig& config);
 
+/// build_mesh's holes, regions, cuts and node sets applied to `m`: the case's
+/// whole mesh, or a window of its box (no hole or cut; window_mesh) whose
+/// checks ask every process through `whole` (collective then).
+mesh::Mesh shape_mesh(const casefile::CaseConfig& config, mesh::Mesh m, const WholeMeshChecks& whole = {});
+
 /// 3D stiffness (Voigt 6×6) of a case material, checked for admissibility.
 Voigt6 material_stiffness(const casefile::MaterialSpec& m);
 
@@ -115,6 +125,11 @@ struct ModelPart {
   /// purely non-local (CG/DG) flags a process does not decide (its cells far
   /// from the part) come from the process whose part holds them.
   std::function<std::vector<char>(std::vector<char>)> share_flags{};
+  /// With several parts, optional: build the part on this window of a box
+  /// mesh (no hole or cut) instead of the whole mesh; `share_flags` then
+  /// takes and gives the window's flags. Every cell whose morphed C, graph
+  /// row or points the part computes must be in it (setup::part_window).
+  std::optional<MeshWindow> window{};
 };
 
 /// Builds everything; throws InputError naming the case-file key for problems

@@ -76,7 +76,7 @@ std::string describe_shape(const casefile::AlphaRegionSpec& r, int dim) {
 
 void check_alpha_regions(const casefile::CaseConfig& config, const alpha::AlphaField& alpha,
                          const bonds::NonlocalPoints& points, const mesh::Mesh& mesh,
-                         std::span<const fem::QuadraturePoint> rule) {
+                         std::span<const fem::QuadraturePoint> rule, const WholeMeshChecks& whole) {
   const auto& regions = alpha.region_list();
   const int dim = config.dim();
   for (std::size_t k = 0; k < regions.size() && k < config.alpha.regions.size(); ++k) {
@@ -89,9 +89,9 @@ void check_alpha_regions(const casefile::CaseConfig& config, const alpha::AlphaF
     }
     for (Index c = 0; c < mesh.num_cells() && !reached; ++c)
       for (const auto& q : rule) reached = reached || reaches(assembly::physical_point(mesh, c, q.xi));
-    if (reached) continue;
+    if (whole.any(reached)) continue;
     const auto& spec = config.alpha.regions[k];
-    const auto mesh_extent = mesh.bounding_box();
+    const auto mesh_extent = whole.bounds_of(mesh);
     throw InputError(fmt::format(
         "{}: this alpha region ({}, transition {}) gives alpha > 0 at no quadrature point of the mesh, "
         "which spans {} to {}: it would leave alpha = 0 where it was meant to act. Move it onto the mesh, "

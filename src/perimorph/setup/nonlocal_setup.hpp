@@ -10,6 +10,7 @@
 #include "perimorph/bonds/nonlocal_points.hpp"
 #include "perimorph/casefile/case_config.hpp"
 #include "perimorph/peridynamics/micromodulus.hpp"
+#include "perimorph/setup/mesh_window.hpp"
 #include "perimorph/setup/nonlocal_material.hpp"
 
 #include <span>
@@ -40,10 +41,11 @@ alpha::AlphaField make_alpha_field(const casefile::CaseConfig& config);
 /// mesh's extent, for an [[alpha.region]] of `alpha` (made by make_alpha_field)
 /// that gives α > 0 at none of the points α is read at: the non-local points
 /// and the local quadrature points of `rule` in every cell. Such a region
-/// would change nothing.
+/// would change nothing. On a window of the mesh `whole` asks every process
+/// (collective).
 void check_alpha_regions(const casefile::CaseConfig& config, const alpha::AlphaField& alpha,
                          const bonds::NonlocalPoints& points, const mesh::Mesh& mesh,
-                         std::span<const fem::QuadraturePoint> rule);
+                         std::span<const fem::QuadraturePoint> rule, const WholeMeshChecks& whole = {});
 
 /// The micromodulus of a case (shape, δ, l; scale not yet calibrated).
 peridynamics::Micromodulus make_kernel(const casefile::NonlocalSpec& spec);

@@ -57,8 +57,13 @@ std::vector<Index> cells_read(const Discretization& part) {
     read[c] = part.computed_cells.empty() || part.computed_cells[c] ||
               (part.nonlocal && part.nonlocal->points.holds(static_cast<Index>(c)));
   if (part.config.solver.op == casefile::SolverOperator::matrix_free && part.mesh.structure) {
-    const auto& layout = *part.mesh.structure;
-    PERIMORPH_ASSERT(layout.box_cells.empty(), "a part of the whole mesh");
+    // The grid the part is on: the whole box, or its window (a box of its own).
+    mesh::StructuredLayout layout = *part.mesh.structure;
+    PERIMORPH_ASSERT(layout.box_cells.empty() || part.window, "a part of the whole mesh or of a window");
+    if (part.window) {
+      for (std::size_t d = 0; d < 3; ++d) layout.cells[d] = part.window->hi[d] - part.window->lo[d];
+      layout.box_cells.clear();
+    }
     const double h = layout.spacing.head(part.dim()).minCoeff();
     read =
         dilated(std::move(read), layout, static_cast<Index>(std::ceil(part.config.nonlocal.horizon / h)) + 1);
@@ -69,6 +74,23 @@ std::vector<Index> cells_read(const Discretization& part) {
   return out;
 }
 
+/// Throws Error if a cell of the window `w` that the part reads lies on a side
+/// where the window cuts the grid (`n` cells per axis): a cell beyond it might
+/// be read too, so the window is too narrow (part_window's widths are wrong).
+void check_window_holds(const WindowNumbers& w, const std::array<Index, 3>& n, std::span<const Index> read) {
+  std::array<Index, 3> width{};
+  for (std::size_t d = 0; d < 3; ++d) width[d] = w.hi[d] - w.lo[d];
+  for (Index c : read) {
+    const std::array<Index, 3> ijk{c % width[0], (c / width[0]) % width[1], c / (width[0] * width[1])};
+    for (std::size_t d = 0; d < 3; ++d)
+      if ((ijk[d] == 0 && w.lo[d] > 0) || (ijk[d] == width[d] - 1 && w.hi[d] < n[d]))
+        throw Error(
+            fmt::format("piece: the part reads cell {}, on the edge of its window [{}, {}) along axis "
+                        "{} of {} cells: the window is too narrow",
+                        w.global_cell[static_cast<std::size_t>(c)], w.lo[d], w.hi[d], d, n[d]));
+  }
+}
+
 }  // namespace
 
 Discretization cut_to_piece(const Discretization& part, std::span<const int> owner, int part_number,
@@ -76,14 +98,24 @@ Discretization cut_to_piece(const Discretization& part, std::span<const int> own
   PERIMORPH_ASSERT(static_cast<Index>(owner.size()) == part.mesh.num_cells(), "a part for every cell");
   const std::vector<Index> cells = cells_read(part);
   mesh::PartMesh pm = mesh::part_mesh(part.mesh, cells);
+  Index whole_nodes = part.mesh.num_nodes(), whole_cells = part.mesh.num_cells();
+  if (part.window) {
+    // Cut from a window: the window's numbers are the whole mesh's.
+    const WindowNumbers& w = *part.window;
+    check_window_holds(w, part.mesh.structure->cells, cells);
+    for (Index& c : pm.global_cell) c = w.global_cell[static_cast<std::size_t>(c)];
+    for (Index& v : pm.global_node) v = w.global_node[static_cast<std::size_t>(v)];
+    whole_nodes = w.whole_nodes;
+    whole_cells = w.whole_cells;
+  }
 
   std::vector<dofs::Continuity> continuity;
   for (Index c : cells) continuity.push_back(part.dofmap.continuity(c));
   dofs::DofMap dofmap(pm.mesh, part.dofmap.block_size(), continuity);
   std::vector<int> piece_owner;
   for (Index c : cells) piece_owner.push_back(owner[static_cast<std::size_t>(c)]);
-  partition::PieceDofs piece_dofs = partition::piece_dofs(dofmap, pm, piece_owner, part_number,
-                                                          part.mesh.num_nodes(), part.mesh.num_cells());
+  partition::PieceDofs piece_dofs =
+      partition::piece_dofs(dofmap, pm, piece_owner, part_number, whole_nodes, whole_cells);
   // Dof names (dof_name) are key × dim + component.
   if (static_cast<long long>(piece_dofs.key_space) * part.dim() > std::numeric_limits<Index>::max())
     throw Error(

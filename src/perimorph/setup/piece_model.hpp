@@ -45,12 +45,13 @@ struct PieceSource {
   /// points, cell graph, cuts and CG/DG flags are empty (keep_source). Its
   /// mesh and dof map number the state carried across a rebuild.
   Discretization part;
-  std::vector<int> owner;  ///< the part of every cell of the whole mesh
+  std::vector<int> owner;  ///< the part of every cell of the part's mesh (whole, or its window)
 };
 
 /// The source of the pieces of a run with [adaptivity]: `part` less the
 /// arrays rebuild_for_alpha computes anew (as large as the piece's own),
-/// with `owner`, the part of every cell of the whole mesh.
+/// with `owner`, the part of every cell of its mesh (the whole mesh, or its
+/// window: Discretization::window).
 std::shared_ptr<const PieceSource> keep_source(Discretization part, std::vector<int> owner);
 
 /// The whole-mesh number of cell c of `disc` (c itself but on a piece), and back
@@ -71,7 +72,10 @@ Index dof_of_name(const Discretization& disc, Index name);
 /// with the box layout kept), dof map, morphed C, non-local points and cell
 /// graph (the rows of the computed cells), flags, damage laws, computed
 /// cells, and `piece` (PieceNumbers). No share_flags: a rebuild for a grown
-/// α is not made on a piece. `owner` is the part of every cell of the whole
+/// α is not made on a piece. A part built on a window (Discretization::window)
+/// gives a piece in the whole mesh's numbers; Error if a cell it reads lies on
+/// a side where the window cuts the grid (the window would be too narrow).
+/// `owner` is the part of every cell of the part's
 /// mesh and `any_over_processes` whether a condition holds on any process
 /// (collective; la::), kept in the piece's discretization
 /// (Discretization::any_over_processes). Requires the part's computed cells
