@@ -168,8 +168,10 @@ set_tests_properties(cli_run_dg0_traction_and_body_force PROPERTIES
 # `info --partition` (issue 17, item 1): B1's 1D bar over 2 ranks, both
 # partitioners balanced (the bar's cells split in halves); after each solve a
 # part receives u at its halo only: its 10 halo cells' 10 nodes and the node it
-# shares with the other part, not the other part's 160.
+# shares with the other part, not the other part's 160. A run builds each part
+# on its window of the bar: its 160 cells and 11 more (1 node neighbour, the
+# bonds' ⌈(δ + h) / h⌉ = 9, 1 spare).
 add_test(NAME cli_info_partition COMMAND ${PM_EXE} info ${PROJECT_SOURCE_DIR}/examples/b1_ghost_forces_1d/case.toml
   --partition 2)
 set_tests_properties(cli_info_partition PROPERTIES
-  PASS_REGULAR_EXPRESSION "partition  2 parts of 320 cells.*coordinate bisection +160 .*PT-Scotch +160 .*u after each solve: the largest part receives 11 of the 321 dof nodes \\(0.034; gathered whole: 161")
+  PASS_REGULAR_EXPRESSION "partition  2 parts of 320 cells.*coordinate bisection +160 .*PT-Scotch +160 .*u after each solve: the largest part receives 11 of the 321 dof nodes \\(0.034; gathered whole: 161.*window holds 171 of the 320 cells")
